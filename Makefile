@@ -1,0 +1,57 @@
+# Everything a newcomer needs: `make serve` and `make test` each create the
+# virtual environment they need (.venv, Python >= 3.12) on a fresh machine.
+
+SHELL := /bin/bash
+VENV  := .venv
+PY    := $(VENV)/bin/python
+PORT  ?= 5006
+
+# A working Python >= 3.12: an explicit PYTHON=..., else the first candidate
+# that really runs (pyenv shims answer on PATH but fail without PYENV_VERSION).
+PYTHON ?= $(shell for p in python3.13 python3.12 \
+	"$$(pyenv root 2>/dev/null)/versions/3.12.1/bin/python3.12" \
+	$$(ls -d "$$(pyenv root 2>/dev/null)"/versions/3.1[2-9]*/bin/python3 2>/dev/null) python3; do \
+	"$$p" -c 'import sys; sys.exit(sys.version_info < (3, 12))' >/dev/null 2>&1 && { echo "$$p"; break; }; done)
+
+.PHONY: venv serve test test-core test-app lint bench browser docker-smoke clean
+
+$(VENV)/.installed: pyproject.toml
+	@test -n "$(PYTHON)" || { echo "error: no Python >= 3.12 found; install one or pass PYTHON=/path/to/python3.12" >&2; exit 1; }
+	@echo "using $(PYTHON) ($$($(PYTHON) --version))"
+	$(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e '.[app,test]'
+	@touch $@
+
+venv: $(VENV)/.installed
+
+serve: venv
+	$(VENV)/bin/panel serve app/main.py --port $(PORT) --address 0.0.0.0 \
+		--allow-websocket-origin=localhost:$(PORT) --allow-websocket-origin=127.0.0.1:$(PORT) \
+		--liveness --index main
+
+# Debian's Chromium for the browser tests (no browser download works here).
+browser:
+	@command -v chromium >/dev/null 2>&1 || { \
+		SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
+		$$SUDO apt-get update -qq && $$SUDO apt-get install -y -qq chromium >/dev/null; }
+	@chromium --version
+
+lint: venv
+	$(VENV)/bin/ruff check .
+
+test: venv browser
+	$(VENV)/bin/ruff check .
+	$(VENV)/bin/pytest
+
+test-core: venv
+	$(VENV)/bin/pytest tests/core tests/numerics
+
+bench: venv
+	$(PY) benchmarks/core_throughput.py
+
+docker-smoke:
+	bash docker/smoke.sh
+
+clean:
+	rm -rf $(VENV) .pytest_cache .ruff_cache .hypothesis
