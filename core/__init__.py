@@ -1,0 +1,26 @@
+"""Exact solution of Zharii (1996) for two elastic spheres in intermittent oblique frictional
+contact, and (``core.numerics``) independent numerical methods for the same problem.
+
+    >>> from core import Contact
+    >>> c = Contact(psi=2.414213562373095, tau0=0.5235987755982988)
+    >>> round(c.tau1 / 3.141592653589793, 12)   # tau1 = 3 pi / 4 (Fig. 4b)
+    0.75
+"""
+
+from core.contact import PSI_MAX, Contact, impulse_ratio
+from core.coulomb import CoulombReport, coulomb_certificate
+from core.physical import MATERIALS, PhysicalInputs, Scales
+from core.tangential import PHASE_NAMES, Phase
+
+__all__ = [
+    "MATERIALS",
+    "PHASE_NAMES",
+    "PSI_MAX",
+    "Contact",
+    "CoulombReport",
+    "Phase",
+    "PhysicalInputs",
+    "Scales",
+    "coulomb_certificate",
+    "impulse_ratio",
+]

@@ -1,0 +1,201 @@
+"""One contact of the problem: the public face of the closed-form solution."""
+
+from __future__ import annotations
+
+import math
+import operator
+from dataclasses import dataclass, field, replace
+from functools import cached_property
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from core import hertz, kinematics, tangential
+from core.clock import clock, half_width
+from core.elliptic import impulse_factor
+from core.physical import PhysicalInputs, Scales
+from core.validation import check_real
+
+PSI_MAX = 1e12
+MAX_GRID = 10**8
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Two identical elastic spheres in one intermittent oblique contact (Zharii 1996).
+
+    Parameters (validated; ValueError names the parameter, value and allowed range):
+
+    - psi in [0, 1e12]: drive ratio 2 (1 - nu) u0 / (mu (2 - nu) H) = tan theta / tan theta0
+      (eq 23); psi <= 1 is full stick, psi > 1 slip, partial stick and counter-slip.
+    - tau0 in (-pi/2, pi/2): start of contact, sin tau0 = h / H (eq 4); tau0 < 0 is a preload.
+    - mu > 0: friction coefficient; nu in (-1, 0.5]: Poisson ratio.
+
+    Times tau = omega t are in radians and taken modulo 2 pi; every method accepts scalars
+    or arrays and returns arrays of the broadcast shape, zero (never nan) outside contact.
+    Results are dimensionless: forces in T0 (eq 37) or P0 = T0 / mu, radii in
+    a* = sqrt(R (H - h) / 2), pressure in p* = 4 G a* / ((1 - nu) pi R), tractions in mu p*.
+    ``scales`` carries the SI values of those scales when built with ``from_physical``.
+    """
+
+    psi: float
+    tau0: float
+    mu: float = 0.2
+    nu: float = 0.3
+    scales: Scales | None = field(default=None, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        checks = {
+            "psi": check_real("psi", self.psi, 0.0, PSI_MAX),
+            "tau0": check_real("tau0", self.tau0, -math.pi / 2, math.pi / 2,
+                               lo_open=True, hi_open=True),
+            "mu": check_real("mu", self.mu, 0.0, lo_open=True),
+            "nu": check_real("nu", self.nu, -1.0, 0.5, lo_open=True),
+        }
+        for name, value in checks.items():
+            object.__setattr__(self, name, value)
+
+    @classmethod
+    def from_physical(
+        cls, *, R: float, G: float, nu: float, mu: float, H: float, u0: float, h: float,
+        omega: float,
+    ) -> Contact:
+        """The contact of SI inputs (R, H, u0, h in m; G in Pa; omega in rad/s), with
+        ``scales`` set. h must lie in (-H, H)."""
+        inputs = PhysicalInputs(R=R, G=G, nu=nu, mu=mu, H=H, u0=u0, h=h, omega=omega)
+        if inputs.psi > PSI_MAX:
+            raise ValueError(
+                f"psi = {inputs.psi!r} (from u0 / H = {u0 / H:g}) is outside the allowed range"
+                f" [0, {PSI_MAX:g}]"
+            )
+        c = cls(psi=inputs.psi, tau0=inputs.tau0, mu=inputs.mu, nu=inputs.nu)
+        return replace(c, scales=Scales.of(inputs, c.F0, c.impulse_ratio))
+
+    # ---- scalars -------------------------------------------------------------------
+    @cached_property
+    def _half_e(self) -> tuple[float, float]:
+        e = half_width(self.tau0)
+        return math.sin(e / 2), math.cos(e / 2)
+
+    @property
+    def tau_end(self) -> float:
+        """End of contact, pi - tau0."""
+        return math.pi - self.tau0
+
+    @cached_property
+    def tau1(self) -> float:
+        """End of partial stick (eq 31), in (pi/2, pi - tau0); nan when psi <= 1."""
+        return tangential.tau1(self.psi, self._half_e[0])
+
+    @cached_property
+    def F0(self) -> float:
+        """F(tau0) of eq 11 (dimensionless), the elliptic factor of the normal impulse."""
+        s, c = self._half_e
+        return float(impulse_factor(s * s, c * c))
+
+    @property
+    def theta0(self) -> float:
+        """Critical angle of incidence arctan(mu (2 - nu) / (2 (1 - nu))) (eq 23), radians."""
+        return math.atan(self.mu * (2.0 - self.nu) / (2.0 * (1.0 - self.nu)))
+
+    @property
+    def theta(self) -> float:
+        """Angle of incidence arctan(u0 / H) = arctan(psi tan theta0), radians."""
+        return math.atan(self.psi * math.tan(self.theta0))
+
+    @cached_property
+    def impulse_ratio(self) -> float:
+        """T_imp / (mu P_imp) (eq 41): psi for psi <= 1, largest (1) at psi = 1."""
+        s, c = self._half_e
+        return float(tangential.impulse_ratio(self.psi, s, c))
+
+    # ---- time grid -------------------------------------------------------------------
+    def tau_grid(self, n: int = 400) -> NDArray[np.float64]:
+        """About n sorted times over [tau0, pi - tau0] that hold tau0, pi/2, tau1 and
+        pi - tau0 exactly, with n/8 extra points in partial stick (short for large psi)."""
+        if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 2 <= n <= MAX_GRID:
+            raise ValueError(f"n must be an integer in [2, {MAX_GRID}], got {n!r}")
+        n = operator.index(n)
+        parts = [np.linspace(self.tau0, self.tau_end, n), [math.pi / 2]]
+        if self.psi > 1.0:
+            parts.append(np.linspace(math.pi / 2, self.tau1, max(n // 8, 8)))
+        return np.unique(np.concatenate(parts))
+
+    # ---- functions of time -----------------------------------------------------------
+    def _clock(self, tau: ArrayLike) -> NDArray[np.float64]:
+        return clock(tau, self._half_e[0])
+
+    def phase(self, tau: ArrayLike) -> NDArray[np.int_]:
+        """Phase code at each tau: 0 no contact, 1 full stick (psi <= 1), 2 slip while
+        loading, 3 partial stick, 4 counter-slip (``core.Phase``)."""
+        return tangential.phase(self._clock(tau), self.psi)
+
+    def approach(self, tau: ArrayLike) -> NDArray[np.float64]:
+        """alpha / (H - h), the approach of the sphere centres (eq 8)."""
+        return hertz.approach(self._clock(tau))
+
+    def normal_force(self, tau: ArrayLike) -> NDArray[np.float64]:
+        """P / P0 = (sin tau - sin tau0)^(3/2) (eq 9); also mu P / T0."""
+        return hertz.normal_force(self._clock(tau), self._half_e[0])
+
+    def tangential_force(self, tau: ArrayLike) -> NDArray[np.float64]:
+        """T / T0 (eqs 38, 39): force on the upper sphere, positive along the drive."""
+        return tangential.tangential_force(self._clock(tau), self.psi, self._half_e[0])
+
+    def contact_radius(self, tau: ArrayLike) -> NDArray[np.float64]:
+        """a / a* (eq 7, 8)."""
+        return hertz.contact_radius(self._clock(tau))
+
+    def stick_radius(self, tau: ArrayLike) -> NDArray[np.float64]:
+        """b / a* (eq 30): a in full stick, the shrinking stick disc in partial stick,
+        0 in the slip phases and outside contact."""
+        return np.sqrt(tangential.stick_radius_squared(self._clock(tau), self.psi))
+
+    def pressure(self, r: ArrayLike, tau: ArrayLike) -> NDArray[np.float64]:
+        """p / p* at radius r (units of a*) and time tau (eq 6); r broadcasts against tau."""
+        w = self._clock(tau)
+        r, w = np.broadcast_arrays(np.asarray(r, dtype=float), w)
+        return hertz.pressure(r, hertz.approach(w))
+
+    def traction(self, r: ArrayLike, tau: ArrayLike) -> NDArray[np.float64]:
+        """tau_u / (mu p*) on the upper sphere at radius r (units of a*) and time tau
+        (eqs 18, 24, 33, 36); r broadcasts against tau."""
+        return tangential.traction(r, self._clock(tau), self.psi)
+
+    def centre_displacement(self, tau: ArrayLike) -> NDArray[np.float64]:
+        """u2 / u0, displacement of the contact centre of the upper sphere (eq 43)."""
+        return kinematics.centre_displacement(self._clock(tau), self.psi, self._half_e[0])
+
+    def centre_velocity(self, tau: ArrayLike) -> NDArray[np.float64]:
+        """v2 / (omega u0), velocity of the contact centre of the upper sphere (eq 42)."""
+        tau = np.asarray(tau, dtype=float)
+        return kinematics.centre_velocity(self._clock(tau), np.cos(tau), self.psi)
+
+    @staticmethod
+    def drive_displacement(tau: ArrayLike) -> NDArray[np.float64]:
+        """u_x0 / u0 = sin tau (eq 3)."""
+        return np.sin(np.asarray(tau, dtype=float))
+
+    @staticmethod
+    def drive_velocity(tau: ArrayLike) -> NDArray[np.float64]:
+        """(du_x0/dt) / (omega u0) = cos tau (eq 3)."""
+        return np.cos(np.asarray(tau, dtype=float))
+
+
+def impulse_ratio(psi: ArrayLike, tau0: float, mu: float = 0.2, nu: float = 0.3) -> NDArray[np.float64]:
+    """T_imp / (mu P_imp) (eq 41) for an array of psi at one tau0; the curve of Fig. 8.
+
+    Independent of mu and nu (accepted for symmetry with ``Contact``). psi is validated
+    element-wise (finite, in [0, 1e12]).
+    """
+    tau0 = check_real("tau0", tau0, -math.pi / 2, math.pi / 2, lo_open=True, hi_open=True)
+    check_real("mu", mu, 0.0, lo_open=True)
+    check_real("nu", nu, -1.0, 0.5, lo_open=True)
+    psi = np.asarray(psi, dtype=float)
+    bad = ~np.isfinite(psi) | (psi < 0.0) | (psi > PSI_MAX)
+    if bad.any():
+        raise ValueError(
+            f"psi = {psi[bad].flat[0]!r} is outside the allowed range [0, {PSI_MAX:g}]"
+        )
+    e = half_width(tau0)
+    return tangential.impulse_ratio(psi, math.sin(e / 2), math.cos(e / 2))

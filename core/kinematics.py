@@ -1,0 +1,48 @@
+"""Motion of the contact-area centre r = 0 of the upper sphere (eqs 42, 43), dimensionless.
+
+Displacement in u0, velocity in omega u0. With s = sin(e/2), a^2 = (1 - w)(1 + w) and
+sin tau - sin tau0 = 2 s^2 a^2 (``core.clock``):
+
+    psi <= 1:  u2 = s^2 a^2                      v2 = cos(tau) / 2
+    slip:      u2 = s^2 a^2 / psi                v2 = cos(tau) / (2 psi)
+    partial:   u2 = s^2 (1/psi - w^2)            v2 = cos(tau) / 2
+    counter:   u2 = -s^2 a^2 / psi               v2 = -cos(tau) / (2 psi)
+
+(the partial-stick line is eq 43's u0 (psi sin tau + 1 - psi - sin tau0) / (2 psi),
+rewritten without cancellation).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from core.clock import one_minus_square
+from core.tangential import Phase, phase
+
+
+def centre_displacement(w: NDArray[np.float64], psi: float, sin_half_e: float) -> NDArray[np.float64]:
+    """u2 / u0 (eq 43); 0 outside contact and at both contact ends."""
+    s2 = sin_half_e**2
+    a2 = one_minus_square(w)
+    if psi <= 1.0:
+        return s2 * a2
+    ph = phase(w, psi)
+    out = np.where(ph == Phase.COUNTER_SLIP, -s2 * a2 / psi, s2 * a2 / psi)
+    partial = ph == Phase.PARTIAL_STICK
+    out[partial] = s2 * (1.0 / psi - w[partial] ** 2)
+    return out
+
+
+def centre_velocity(
+    w: NDArray[np.float64], cos_tau: NDArray[np.float64], psi: float
+) -> NDArray[np.float64]:
+    """v2 / (omega u0) (eq 42); 0 outside contact. Jumps at tau0, tau1 and pi - tau0."""
+    ph = phase(w, psi)
+    factor = np.select(
+        [ph == Phase.FULL_STICK, ph == Phase.SLIP, ph == Phase.PARTIAL_STICK,
+         ph == Phase.COUNTER_SLIP],
+        [0.5, 0.5 / max(psi, 1.0), 0.5, -0.5 / max(psi, 1.0)],
+        0.0,
+    )
+    return factor * cos_tau

@@ -1,0 +1,131 @@
+"""Tangential tractions, force and impulse (eqs 18-41), dimensionless.
+
+Phases (``Phase``): full stick for psi <= 1 (eq 36); for psi > 1 slip while loading
+(tau0 <= tau <= pi/2, eq 18), partial stick (pi/2 < tau < tau1, eq 24) and counter-slip
+(tau1 <= tau <= pi - tau0, eq 33).
+
+In the clock variable w of ``core.clock`` the stick disc of eq 30 is simply
+
+    (b / a*)^2 = (1 - w/k)(1 + w/k),   k = sqrt(2 / (psi + 1)),
+
+so partial stick ends at w = k, i.e. tau1 = pi/2 + 2 arcsin(k sin(e/2)) (eq 31, in a form
+that keeps its digits for huge psi, where tau1 - pi/2 ~ 2 sqrt((1 - sin tau0)/psi), eq 35).
+Scales: traction in mu p*, force in T0 (eq 37), radii in a*.
+"""
+
+from __future__ import annotations
+
+from enum import IntEnum
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from core.clock import HALF_PI_HI, HALF_PI_LO, one_minus_square
+from core.elliptic import quartic_integral
+from core.hertz import SQRT8, cube, pressure
+
+
+class Phase(IntEnum):
+    """Phase of the contact at one time (the integer codes of ``Contact.phase``)."""
+
+    NO_CONTACT = 0
+    FULL_STICK = 1
+    SLIP = 2
+    PARTIAL_STICK = 3
+    COUNTER_SLIP = 4
+
+
+PHASE_NAMES: dict[int, str] = {
+    Phase.NO_CONTACT: "no contact",
+    Phase.FULL_STICK: "full stick",
+    Phase.SLIP: "slip",
+    Phase.PARTIAL_STICK: "partial stick",
+    Phase.COUNTER_SLIP: "counter-slip",
+}
+
+
+def stick_clock(psi: ArrayLike) -> NDArray[np.float64]:
+    """k = sqrt(2 / (psi + 1)): the clock value w at tau1 (psi > 1)."""
+    return np.sqrt(2.0 / (np.asarray(psi, dtype=float) + 1.0))
+
+
+def tau1(psi: float, sin_half_e: float) -> float:
+    """End of partial stick, pi/2 < tau1 < pi - tau0 (eq 31); nan for psi <= 1."""
+    if psi <= 1.0:
+        return float("nan")
+    e1 = 2.0 * np.arcsin(float(stick_clock(psi)) * sin_half_e)
+    return float(HALF_PI_HI + (e1 + HALF_PI_LO))
+
+
+def phase(w: NDArray[np.float64], psi: float) -> NDArray[np.int_]:
+    """Phase code at each clock value w (see ``Phase``)."""
+    inside = np.abs(w) <= 1.0
+    if psi <= 1.0:
+        return np.where(inside, Phase.FULL_STICK, Phase.NO_CONTACT).astype(int)
+    k = float(stick_clock(psi))
+    out = np.full(w.shape, int(Phase.SLIP))
+    out[w > 0.0] = Phase.PARTIAL_STICK
+    out[w >= k] = Phase.COUNTER_SLIP
+    out[~inside] = Phase.NO_CONTACT
+    return out
+
+
+def stick_radius_squared(w: NDArray[np.float64], psi: float) -> NDArray[np.float64]:
+    """(b / a*)^2: a^2 in full stick, (1 - w/k)(1 + w/k) in partial stick (eq 30), else 0."""
+    if psi <= 1.0:
+        return one_minus_square(w)
+    k = float(stick_clock(psi))
+    return np.where((w > 0.0) & (w < k), one_minus_square(w / k), 0.0)
+
+
+def tangential_force(w: NDArray[np.float64], psi: float, sin_half_e: float) -> NDArray[np.float64]:
+    """T / T0 on the upper sphere, positive along the drive (eqs 38, 39).
+
+    T / T0 = (1 - sin tau0)^(3/2) times: psi a^3 (stick); a^3 (slip); 2 b^3 - a^3
+    (partial stick); -a^3 (counter-slip), with a, b in units of a*.
+    """
+    a3 = cube(one_minus_square(w))
+    scale = SQRT8 * sin_half_e**3
+    if psi <= 1.0:
+        return (psi * scale) * a3
+    t = np.where(w > 0.0, -a3, a3)
+    k = float(stick_clock(psi))
+    partial = (w > 0.0) & (w < k)
+    if partial.any():
+        t[partial] += 2.0 * cube(one_minus_square(w[partial] / k))
+    t *= scale
+    return t
+
+
+def traction(
+    r: ArrayLike, w: NDArray[np.float64], psi: float
+) -> NDArray[np.float64]:
+    """tau_u / (mu p*) at radius r (units of a*; sign of r ignored) and clock w (eqs 18, 24,
+    33, 36); r and w broadcast against each other."""
+    r, w = np.broadcast_arrays(np.abs(np.asarray(r, dtype=float)), w)
+    a2 = one_minus_square(w)
+    hertz = pressure(r, a2)
+    if psi <= 1.0:
+        return psi * hertz
+    out = np.where(w > 0.0, -hertz, hertz)
+    b2 = stick_radius_squared(w, psi)
+    return out + 2.0 * pressure(r, b2)
+
+
+def impulse_ratio(psi: ArrayLike, sin_half_e: float, cos_half_e: float) -> NDArray[np.float64]:
+    """T_imp / (mu P_imp) (eq 41) for an array of psi at one tau0.
+
+    psi <= 1: psi. psi > 1: ((psi+1)/2)^(3/2) F(tau1)/F(tau0) = k J(k^2 m0) / J(m0) with
+    m0 = sin^2(e/2) and J of ``core.elliptic`` (F = 12 m^2 J), free of cancellation.
+    """
+    psi = np.asarray(psi, dtype=float)
+    out = psi.copy()
+    big = psi > 1.0
+    if big.any():
+        p = psi[big]
+        k2 = 2.0 / (p + 1.0)
+        m0, mc0 = sin_half_e**2, cos_half_e**2
+        j0 = quartic_integral(m0, mc0)
+        j1 = quartic_integral(k2 * m0, (p - 1.0) / (p + 1.0) + k2 * mc0)
+        out[big] = np.sqrt(k2) * j1 / j0
+    return out

@@ -1,0 +1,40 @@
+"""Validation of scalar parameters at the boundary (constructors), with messages that
+name the parameter, its value and the allowed range."""
+
+from __future__ import annotations
+
+import math
+import numbers
+
+
+def _interval(lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> str:
+    left = "(-inf" if lo is None else ("(" if lo_open else "[") + f"{lo:g}"
+    right = "inf)" if hi is None else f"{hi:g}" + (")" if hi_open else "]")
+    return f"{left}, {right}"
+
+
+def check_real(
+    name: str,
+    value: object,
+    lo: float | None = None,
+    hi: float | None = None,
+    *,
+    lo_open: bool = False,
+    hi_open: bool = False,
+) -> float:
+    """Return ``value`` as a float if it is a finite real number in the given interval.
+
+    Raises ValueError naming the parameter, its value and the allowed range otherwise
+    (nan, inf, booleans, strings and out-of-range numbers alike).
+    """
+    allowed = _interval(lo, hi, lo_open, hi_open)
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ValueError(f"{name} must be a real number in {allowed}, got {value!r}")
+    v = float(value)
+    if not math.isfinite(v):
+        raise ValueError(f"{name} must be a finite number in {allowed}, got {v!r}")
+    below = lo is not None and (v <= lo if lo_open else v < lo)
+    above = hi is not None and (v >= hi if hi_open else v > hi)
+    if below or above:
+        raise ValueError(f"{name} = {v!r} is outside the allowed range {allowed}")
+    return v
