@@ -1,0 +1,86 @@
+"""Independent numerical methods for the Zharii (1996) contact, and a common front end.
+
+Every method integrates the same loading history (eq 3) with Hertz geometry (eqs 5-9)
+and Coulomb's law, never the closed form of ``core`` (except ``quad`` and
+``gauss_legendre``, which integrate core's T(tau) to test the impulse formula eq 41).
+Units: see ``core.numerics.result``.
+
+    from core.numerics import solve, METHODS, INTERACTIVE_RESOLUTION, MethodResult
+    res = solve("mdr", contact, resolution=200)
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+
+import numpy as np
+
+from core.numerics import annulus, dem, mdr, quadrature, textbook
+from core.numerics.result import ContactLike, MethodResult, Params, check_resolution
+
+__all__ = [
+    "EXTRA_METHODS",
+    "INTERACTIVE_RESOLUTION",
+    "METHODS",
+    "MethodResult",
+    "Params",
+    "check_resolution",
+    "solve",
+]
+
+METHODS: dict[str, str] = {
+    "mdr": mdr.DESCRIPTION,
+    "annulus": annulus.DESCRIPTION,
+    **dem.DESCRIPTIONS,
+    **quadrature.DESCRIPTIONS,
+}
+"""Registry: method name -> one-line description."""
+
+EXTRA_METHODS: dict[str, str] = {"textbook": textbook.DESCRIPTION}
+"""Methods accepted by ``solve`` but kept out of METHODS (reference for the stability map)."""
+
+_SOLVERS: dict[str, Callable[[ContactLike, int], tuple]] = {
+    "mdr": mdr.solve,
+    "annulus": annulus.solve,
+    **dem.SOLVERS,
+    **quadrature.SOLVERS,
+    "textbook": textbook.solve,
+}
+
+INTERACTIVE_RESOLUTION: dict[str, int] = {
+    "mdr": 200,
+    "annulus": 24,
+    "lammps_mindlin": 2000,
+    "lammps_mindlin_force": 2000,
+    "lammps_mindlin_rescale": 2000,
+    "lammps_mindlin_rescale_force": 2000,
+    "liggghts_history": 2000,
+    "direnzo": 2000,
+    "quad": 50,
+    "gauss_legendre": 64,
+}
+"""Resolution per method that computes in well under ~100 ms on one core here."""
+
+
+def solve(name: str, contact: ContactLike, resolution: int) -> MethodResult:
+    """Run method ``name`` on ``contact`` (a ``core.Contact`` or ``Params``).
+
+    Raises KeyError for an unknown name and ValueError for a bad resolution (an int
+    >= 2, not bool, below each method's work limit) or bad contact parameters.
+    """
+    if name not in _SOLVERS:
+        raise KeyError(f"unknown method {name!r}; choose one of {sorted(_SOLVERS)}")
+    check_resolution(resolution)
+    start = time.perf_counter()
+    tau, T, b, ratio = _SOLVERS[name](contact, resolution)
+    wall = time.perf_counter() - start
+    return MethodResult(
+        method=name,
+        resolution=int(resolution),
+        tau=np.asarray(tau, dtype=float),
+        T=np.asarray(T, dtype=float),
+        b=None if b is None else np.asarray(b, dtype=float),
+        impulse_ratio=float(ratio),
+        wall_time=wall,
+    )
