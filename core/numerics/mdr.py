@@ -143,9 +143,10 @@ def traction(contact: ContactLike, tau: float, r: ArrayLike, n: int = 2000
     slope = np.diff(us) / np.diff(xs)
     r = np.atleast_1d(np.asarray(r, dtype=float))
     out = np.zeros(r.shape)
-    for i, ri in enumerate(r.ravel()):
-        if ri >= a:
+    for i, r_i in enumerate(r.ravel()):
+        if r_i >= a:
             continue
+        ri = max(r_i, 1e-300)  # r = 0: the first segment has zero slope, the log stays finite
         lo = np.clip(xs[:-1], ri, None)
         hi = np.clip(xs[1:], ri, None)
         prim_hi = np.log(hi + np.sqrt(np.maximum(hi * hi - ri * ri, 0.0)))
