@@ -28,6 +28,10 @@ HALF_PI_HI = np.pi / 2
 HALF_PI_LO = 6.123233995736766e-17  # pi/2 - HALF_PI_HI
 TWO_PI = 2 * np.pi
 
+# pi/2 in three parts of 33 bits each (fdlibm's Cody-Waite constants): n * part is exact
+# for |n| < 2**20, so tau - n pi/2 keeps full relative accuracy for |tau| up to ~1e5.
+_PIO2 = (1.57079632673412561417e00, 6.07710050630396597660e-11, 2.02226624871116645580e-21)
+
 
 def half_width(tau0: float) -> float:
     """e = pi/2 - tau0 (radians), the half-duration of the contact in tau."""
@@ -35,15 +39,19 @@ def half_width(tau0: float) -> float:
 
 
 def half_offset(tau: ArrayLike) -> NDArray[np.float64]:
-    """u = (tau - pi/2) / 2 with tau first reduced modulo 2 pi into [-pi/2, 3 pi/2).
+    """u = (tau - pi/2 - 2 pi k) / 2 with the period k chosen so that u is in [-pi/2, pi/2).
 
-    Times already in that window (every time of one contact) are used as given, so a time
-    passed exactly as tau0 or pi - tau0 stays exact.
+    The offset tau - (4k + 1) pi/2 is formed by Cody-Waite reduction, so it is exact to a
+    few ulp of itself even when tiny (grazing contact) or a few periods away.
     """
     t = np.asarray(tau, dtype=float)
     if t.size and (t.min() < -HALF_PI_HI or t.max() >= 3 * HALF_PI_HI):
-        t = np.mod(t + HALF_PI_HI, TWO_PI) - HALF_PI_HI
-    return 0.5 * ((t - HALF_PI_HI) - HALF_PI_LO)
+        n = 4.0 * np.floor((t + HALF_PI_HI) / TWO_PI) + 1.0
+        x = ((t - n * _PIO2[0]) - n * _PIO2[1]) - n * _PIO2[2]
+    else:
+        x = ((t - _PIO2[0]) - _PIO2[1]) - _PIO2[2]
+    x *= 0.5
+    return x
 
 
 def clock(tau: ArrayLike, sin_half_e: float) -> NDArray[np.float64]:

@@ -84,8 +84,11 @@ class Contact:
 
     @cached_property
     def tau1(self) -> float:
-        """End of partial stick (eq 31), in (pi/2, pi - tau0); nan when psi <= 1."""
-        return tangential.tau1(self.psi, self._half_e[0])
+        """End of partial stick (eq 31), in (pi/2, pi - tau0]; nan when psi <= 1.
+
+        (For psi within ~1e-12 of 1 and grazing contact, tau1 and pi - tau0 round to the
+        same float; tau1 is then reported as pi - tau0.)"""
+        return min(tangential.tau1(self.psi, *self._half_e), self.tau_end)
 
     @cached_property
     def F0(self) -> float:

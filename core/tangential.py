@@ -49,12 +49,22 @@ def stick_clock(psi: ArrayLike) -> NDArray[np.float64]:
     return np.sqrt(2.0 / (np.asarray(psi, dtype=float) + 1.0))
 
 
-def tau1(psi: float, sin_half_e: float) -> float:
-    """End of partial stick, pi/2 < tau1 < pi - tau0 (eq 31); nan for psi <= 1."""
+def tau1(psi: float, sin_half_e: float, cos_half_e: float) -> float:
+    """End of partial stick, pi/2 < tau1 <= pi - tau0 (eq 31); nan for psi <= 1.
+
+    tau1 = pi/2 + 2 arcsin(x), x = k sin(e/2). Where x > 1/2 (psi near 1) arcsin is
+    ill-conditioned, so it is taken through the complement
+    1 - x = (psi - 1)/((psi + 1)(1 + k)) + k cos^2(e/2)/(1 + sin(e/2)), which never cancels:
+    tau1 = 3 pi/2 - 4 arcsin(sqrt((1 - x)/2)).
+    """
     if psi <= 1.0:
         return float("nan")
-    e1 = 2.0 * np.arcsin(float(stick_clock(psi)) * sin_half_e)
-    return float(HALF_PI_HI + (e1 + HALF_PI_LO))
+    k = float(stick_clock(psi))
+    x = k * sin_half_e
+    if x <= 0.5:
+        return float(HALF_PI_HI + (2.0 * np.arcsin(x) + HALF_PI_LO))
+    one_minus_x = (psi - 1.0) / ((psi + 1.0) * (1.0 + k)) + k * cos_half_e**2 / (1.0 + sin_half_e)
+    return float(3.0 * HALF_PI_HI - (4.0 * np.arcsin(np.sqrt(0.5 * one_minus_x)) - 3.0 * HALF_PI_LO))
 
 
 def phase(w: NDArray[np.float64], psi: float) -> NDArray[np.int_]:

@@ -35,6 +35,8 @@ from core.numerics.loading import approach, impulse_ratio_trapezoid, time_grid
 from core.numerics.result import ContactLike, check_resolution, contact_parameters
 
 NAME = "mdr"
+STICK_TOL = 1e-9
+"""Slack of the stick test, relative to the largest compression a^2."""
 DESCRIPTION = "Method of dimensionality reduction (Popov & Hess): N springs, stick/slide"
 
 
@@ -68,9 +70,10 @@ def stick_radius(x: NDArray[np.float64], margin: NDArray[np.float64], a: float) 
     """
     inside = x < a
     m = margin[inside]
-    if m.size == 0 or m[0] < 0.0:
+    tol = STICK_TOL * max(a * a, 1e-300)  # psi = 1 rides the Coulomb limit exactly
+    if m.size == 0 or m[0] < -tol:
         return 0.0
-    neg = np.flatnonzero(m < 0.0)
+    neg = np.flatnonzero(m < -tol)
     if neg.size == 0:
         return a
     k = neg[0]

@@ -4,8 +4,8 @@ These two methods do not solve the contact: they integrate ``core``'s T(tau) and
 and so test the elliptic closed form of the impulses (eqs 10, 11, 41) rather than the
 traction solution. The ratio is T_imp / (mu P_imp) = int T / T0 dtau / int P / P0 dtau.
 
-* ``quad``: scipy.integrate.quad (QUADPACK QAGS) with ``limit = resolution``
-  subintervals, breakpoints at pi/2 (and tau1 for psi > 1) where T'' jumps.
+* ``quad``: scipy.integrate.quad (QUADPACK QAGP) with ``limit = resolution``
+  subintervals (at least one more than the breakpoints), breakpoints at pi/2 (and tau1 for psi > 1) where T'' jumps.
 * ``gauss_legendre``: one fixed ``resolution``-point Gauss-Legendre rule over the whole
   contact [tau0, pi - tau0]; its algebraic convergence shows the kinks of T.
 """
@@ -46,6 +46,7 @@ def solve_quad(contact: ContactLike, resolution: int) -> tuple:
     points = [np.pi / 2]
     if c.psi > 1 and np.isfinite(c.tau1) and start < c.tau1 < end:
         points.append(float(c.tau1))
+    limit = max(limit, len(points) + 1)  # QUADPACK needs more subintervals than breaks
     seen: list[float] = []
 
     def t_of(x: float) -> float:
