@@ -1,0 +1,429 @@
+"""The explorer: controls and scenes assembled into a Panel template.
+
+`Explorer` wires an `ExplorerState` (what the user set) to the scenes (what is shown):
+a parameter change rebuilds the `core.Contact` once and lets every scene refresh its
+curves; a change of tau (the scrubber, or an animation frame) refreshes only what
+depends on tau.  All changes of one step are sent to the browser in one message
+(`panel.io.hold`).  The animation runs on the server (`pn.state.add_periodic_callback`),
+so frames do not wait for widget round trips.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+import time
+from urllib.parse import urlencode
+
+import numpy as np
+import panel as pn
+from panel.io import hold
+
+from app.formulas import formulas
+from app.methods import MethodsScene
+from app.scenes import (
+    DiscScene,
+    ForceScene,
+    ImpulseScene,
+    MotionScene,
+    RadiiScene,
+    Scene,
+    TractionScene,
+    phase_name,
+)
+from app.state import PRESETS, ExplorerState, parse_query
+from core import Contact
+
+CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
+FRAME_MS = 20  # animation period on the server (50 frames/s requested)
+MAX_FRAME_DT = 0.1  # a late frame never jumps more than this (s)
+
+#: Large type for a projector; a little smaller on a phone.
+CSS = """
+:root { --bokeh-font-size: 17px; }
+html { font-size: 17px; }
+@media (max-width: 700px) { :root { --bokeh-font-size: 15px; } html { font-size: 15px; } }
+"""
+
+
+class Explorer:
+    """One user's session: state, widgets, scenes and their wiring."""
+
+    def __init__(self, state: ExplorerState | None = None,
+                 query: dict | None = None) -> None:
+        self.state = state or ExplorerState()
+        self.messages: list[str] = []
+        if query:
+            values, self.messages = parse_query(query)
+            self._apply_query(values)
+        self.contact: Contact = self.state.contact()
+        self._callback = None
+        self._last_tick = 0.0
+        self._syncing = False
+        self._shown_phase = -1
+
+        self.traction = TractionScene()
+        self.disc = DiscScene()
+        self.force = ForceScene()
+        self.impulse = ImpulseScene()
+        self.radii = RadiiScene()
+        self.motion = MotionScene()
+        self.scenes: list[Scene] = [self.traction, self.disc, self.force, self.impulse,
+                                    self.radii, self.motion]
+        self.methods = MethodsScene()
+
+        self._build_widgets()
+        self.state.param.watch(self._on_params, ["psi", "tau0", "mu", "nu", "physical", "R",
+                                                 "G", "H", "u0", "h", "omega", "preset"])
+        self.state.param.watch(self._on_tau, ["tau"])
+        self.state.param.watch(self._on_log, ["log_psi"])
+        self.state.param.watch(self._on_playing, ["playing"])
+        self.impulse.set_log(self.state.log_psi)
+        self.refresh()
+
+    # ------------------------------------------------------------------ state
+
+    def _apply_query(self, values: dict) -> None:
+        """Apply validated query values; a combination core rejects falls back to defaults."""
+        defaults = {k: self.state.param[k].default for k in values}
+        self.state.param.update(**values)
+        try:
+            self.state.contact()
+        except ValueError as err:
+            self.messages.append(f"these parameters are rejected ({err}); defaults used")
+            self.state.param.update(**defaults)
+
+    def refresh(self) -> None:
+        """Recompute every scene for the current state (after a parameter change)."""
+        c = self.contact
+        tau = self.state.tau
+        with hold():
+            for scene in self.scenes:
+                scene.update_contact(c)
+                scene.update_tau(c, tau)
+            preset = PRESETS.get(self.state.preset)
+            family = preset.family if preset else ()
+            self.force.set_family([Contact(p, c.tau0, mu=c.mu, nu=c.nu) for p in family])
+            self.tau_slider.param.update(start=c.tau0, end=c.tau_end)
+            self.readout.object = self._readout_text(c)
+            self._show_formulas(c, tau)
+            self.now.object = self._now_text(c, tau)
+            self.methods.update_contact(c)
+            self.downloads_filename()
+        self._write_url()
+
+    def _on_params(self, *events) -> None:
+        if self._syncing:
+            return
+        names = {e.name for e in events}
+        if names & {"psi", "tau0", "mu", "nu"} and "preset" not in names:
+            self._set_silently(preset="")
+        try:
+            c = self.state.contact()
+        except ValueError as err:
+            self.show_messages([f"not applied: {err}"])
+            return
+        self.show_messages([])
+        self.contact = c
+        updates = {}
+        if self.state.physical:
+            updates.update(psi=c.psi, tau0=c.tau0)
+        tau = min(max(self.state.tau, c.tau0), c.tau_end)
+        if tau != self.state.tau:
+            updates["tau"] = tau
+        self._set_silently(**updates)
+        self.psi_slider.disabled = self.tau0_slider.disabled = self.state.physical
+        self.preset_select.value = self.state.preset
+        self.refresh()
+
+    def _set_silently(self, **values) -> None:
+        """Update state without triggering the per-change recomputation."""
+        self._syncing = True
+        try:
+            self.state.param.update(**values)
+        finally:
+            self._syncing = False
+
+    def _on_tau(self, *events) -> None:
+        if self._syncing:
+            return
+        self.update_tau()
+        if not self.state.playing:
+            self._write_url()
+
+    def update_tau(self) -> None:
+        """Refresh what depends on tau only: one animation frame."""
+        c, tau = self.contact, self.state.tau
+        with hold():
+            for scene in self.scenes:
+                scene.update_tau(c, tau)
+            self.methods.update_tau(c, tau)
+            self.now.object = self._now_text(c, tau)
+            self._show_formulas(c, tau)
+
+    def _show_formulas(self, c: Contact, tau: float) -> None:
+        phase = int(np.asarray(c.phase(tau)).reshape(-1)[0])
+        if phase != self._shown_phase:
+            self._shown_phase = phase
+            self.formulas.object = formulas(phase)
+
+    def _on_log(self, event) -> None:
+        self.impulse.set_log(event.new)
+        with hold():
+            self.impulse.update_contact(self.contact)
+        self._write_url()
+
+    # -------------------------------------------------------------- animation
+
+    def step(self, seconds: float = 1 / 30) -> float:
+        """Advance tau as `seconds` of animation at the current speed; wrap at the end.
+
+        Returns the new tau.  The last frame of a contact lands exactly on pi - tau0;
+        the next one starts again at tau0.
+        """
+        c = self.contact
+        tau = self.state.tau
+        if tau >= c.tau_end:
+            new = c.tau0
+        else:
+            dtau = self.state.speed * (c.tau_end - c.tau0) * seconds / CONTACT_SECONDS
+            new = min(tau + dtau, c.tau_end)
+        self.state.tau = new
+        return new
+
+    def _tick(self) -> None:
+        now = time.monotonic()
+        dt = min(now - self._last_tick, MAX_FRAME_DT) if self._last_tick else FRAME_MS / 1e3
+        self._last_tick = now
+        self.step(dt)
+
+    def _on_playing(self, event) -> None:
+        self.play_button.label = "⏸ Pause" if event.new else "▶ Play"
+        self.play_button.color = "warning" if event.new else "success"
+        doc = pn.state.curdoc
+        served = doc is not None and doc.session_context is not None
+        if event.new and served:
+            self._last_tick = 0.0
+            if self._callback is None:
+                self._callback = pn.state.add_periodic_callback(self._tick, period=FRAME_MS)
+            elif not self._callback.running:
+                self._callback.start()
+        elif not event.new:
+            if self._callback is not None and self._callback.running:
+                self._callback.stop()
+            self._write_url()
+
+    # ------------------------------------------------------------------- view
+
+    def _build_widgets(self) -> None:
+        s = self.state
+        self.psi_slider = pn.widgets.EditableFloatSlider.from_param(
+            s.param.psi, label="ψ = tan θ / tan θ₀", start=0.05, end=30.0, step=0.01,
+            fixed_start=1e-6, fixed_end=1e6, format="0[.]000")
+        self.tau0_slider = pn.widgets.EditableFloatSlider.from_param(
+            s.param.tau0, label="τ₀ (rad): contact starts", start=-1.5, end=1.5, step=0.005,
+            fixed_start=-1.5, fixed_end=1.5, format="0[.]0000")
+        self.mu_slider = pn.widgets.EditableFloatSlider.from_param(
+            s.param.mu, label="μ friction", start=0.01, end=1.0, step=0.01, fixed_start=1e-3,
+            fixed_end=2.0, format="0[.]000")
+        self.nu_slider = pn.widgets.EditableFloatSlider.from_param(
+            s.param.nu, label="ν Poisson ratio", start=0.0, end=0.49, step=0.01,
+            fixed_start=0.0, fixed_end=0.499, format="0[.]000")
+        self.tau_slider = pn.widgets.EditableFloatSlider.from_param(
+            s.param.tau, label="τ = ωt (rad): time", start=self.contact.tau0,
+            end=self.contact.tau_end, step=0.002, format="0[.]0000")
+        self.play_button = pn.widgets.Button(label="▶ Play", color="success", width=110)
+        self.play_button.on_click(lambda _: setattr(s, "playing", not s.playing))
+        self.step_button = pn.widgets.Button(label="Step", width=100)
+        self.step_button.on_click(lambda _: self.step())
+        self.speed_slider = pn.widgets.FloatSlider.from_param(
+            s.param.speed, label="Speed", start=0.1, end=5.0, step=0.1)
+        self.log_box = pn.widgets.Checkbox.from_param(s.param.log_psi,
+                                                      label="log ψ axis (to 10⁶)")
+        options = {"(custom)": "", **{p.label: k for k, p in PRESETS.items()}}
+        self.preset_select = pn.widgets.Select(label="Preset: the paper's figures",
+                                               options=options, value=s.preset)
+        self.preset_select.param.watch(self._on_preset_select, "value")
+        self.reset_button = pn.widgets.Button(label="Reset", width=100)
+        self.reset_button.on_click(lambda _: s.reset())
+
+        self.physical_box = pn.widgets.Checkbox.from_param(
+            s.param.physical, label="Use physical inputs (SI units)")
+        self.material_select = pn.widgets.Select(label="Material", options=list(
+            s.param.material.objects), value=s.material)
+        self.material_select.param.watch(self._on_material, "value")
+        si = [pn.widgets.FloatInput.from_param(s.param[k], label=label, format="0.000e+0")
+              for k, label in (("R", "R radius (m)"), ("G", "G shear modulus (Pa)"),
+                               ("H", "H normal amplitude (m)"), ("u0", "u₀ tangential "
+                               "amplitude (m)"), ("h", "h gap (m), < H"),
+                               ("omega", "ω (rad/s)"))]
+        self.physical_card = pn.Card(self.physical_box, self.material_select, *si,
+                                     title="Physical inputs", collapsed=True,
+                                     sizing_mode="stretch_width")
+
+        self.message = pn.pane.Alert("", alert_type="warning", visible=False,
+                                     sizing_mode="stretch_width", name="query_message")
+        self.show_messages(self.messages)
+        self.readout = pn.pane.Markdown("", sizing_mode="stretch_width",
+                                        css_classes=["pn-readout"])
+        self.now = pn.pane.Markdown("", sizing_mode="stretch_width")
+        self.formulas = pn.pane.Markdown("", sizing_mode="stretch_width")
+        self.downloads = {
+            key: pn.widgets.FileDownload(callback=lambda key=key: self.csv_file(key),
+                                         filename=f"{key}.csv", label=f"CSV: {key}",
+                                         color="primary", width=150)
+            for key in ("curves", "traction", "impulse")
+        }
+
+    def _on_preset_select(self, event) -> None:
+        if event.new and event.new != self.state.preset:
+            self.state.apply_preset(event.new)
+
+    def _on_material(self, event) -> None:
+        if event.new != "custom":
+            self.state.apply_material(event.new)
+
+    def show_messages(self, messages: list[str]) -> None:
+        """Show warnings (e.g. rejected URL values) above the plots; [] hides them."""
+        self.message.object = "\n".join(f"- {m}" for m in messages)
+        self.message.visible = bool(messages)
+
+    def _readout_text(self, c: Contact) -> str:
+        rows = [
+            ("θ (incidence angle)", f"{math.degrees(c.theta):.3f}°"),
+            ("θ₀ (critical angle)", f"{math.degrees(c.theta0):.3f}°"),
+            ("ψ", f"{c.psi:.6g}"),
+            ("τ₀ … π − τ₀", f"{c.tau0:.4f} … {c.tau_end:.4f} rad"),
+            ("τ₁ (stick disc vanishes)", "none (ψ ≤ 1)" if math.isnan(c.tau1)
+             else f"{c.tau1:.4f} rad"),
+            ("T_imp / (μ P_imp)", f"{c.impulse_ratio:.5f}"),
+        ]
+        sc = c.scales
+        if sc is not None:
+            rows += [
+                ("T₀ (force scale)", f"{sc.T0:.4g} N"),
+                ("P₀ = T₀/μ", f"{sc.P0:.4g} N"),
+                ("a* (largest contact radius)", f"{sc.a_star * 1e6:.4g} µm"),
+                ("p* (peak pressure)", f"{sc.p_star / 1e6:.4g} MPa"),
+                ("normal impulse", f"{sc.normal_impulse:.4g} N·s"),
+                ("tangential impulse", f"{sc.tangential_impulse:.4g} N·s"),
+                ("period 2π/ω", f"{sc.period * 1e6:.4g} µs"),
+            ]
+        return "| quantity | value |\n|---|---|\n" + "\n".join(f"| {k} | {v} |"
+                                                            for k, v in rows)
+
+    def _now_text(self, c: Contact, tau: float) -> str:
+        t = np.array([tau])
+        T, a, b = (float(f(t)[0]) for f in (c.tangential_force, c.contact_radius,
+                                             c.stick_radius))
+        text = (f"**τ = {tau:.4f} rad: {phase_name(c, tau)}**  \n"
+                f"T/T₀ = {T:.4f}, a/a* = {a:.4f}, b/a* = {b:.4f}")
+        sc = c.scales
+        if sc is not None:
+            t = tau * sc.period / (2 * math.pi)
+            text += (f"  \nt = {t * 1e6:.4g} µs, T = {T * sc.T0:.4g} N, "
+                     f"a = {a * sc.a_star * 1e6:.4g} µm, b = {b * sc.a_star * 1e6:.4g} µm")
+        return text
+
+    # ---------------------------------------------------------------- outputs
+
+    def csv_text(self, key: str) -> str:
+        """CSV of the data shown: 'curves' (T, radii, motion on the tau grid),
+        'traction' (the profile at the current tau) or 'impulse' (the impulse curve)."""
+        if key == "curves":
+            table = self.force.table()
+            for scene in (self.radii, self.motion):
+                extra = scene.table()
+                np.testing.assert_array_equal(extra.pop("tau"), table["tau"])
+                table.update(extra)
+            sc = self.contact.scales
+            if sc is not None:
+                table.update(t_s=table["tau"] * sc.period / (2 * math.pi),
+                             T_N=table["T"] * sc.T0,
+                             muP_N=table["muP"] * sc.T0, a_m=table["a"] * sc.a_star,
+                             b_m=table["b"] * sc.a_star,
+                             approach_m=table["approach"] * sc.alpha_star,
+                             u2_m=table["u2"] * sc.u0, v2_m_per_s=table["v2"] * sc.v_star)
+        elif key == "traction":
+            table = self.traction.table()
+        elif key == "impulse":
+            table = self.impulse.table()
+        else:
+            raise KeyError(key)
+        names = list(table)
+        body = np.column_stack([np.asarray(table[n], float) for n in names])
+        out = io.StringIO()
+        np.savetxt(out, body, delimiter=",", header=",".join(names), comments="", fmt="%.10g")
+        return out.getvalue()
+
+    def csv_file(self, key: str) -> io.StringIO:
+        """The CSV as a file object, for `pn.widgets.FileDownload`."""
+        return io.StringIO(self.csv_text(key))
+
+    def downloads_filename(self) -> None:
+        """Name the CSV files after the parameters they hold."""
+        c = self.contact
+        tag = f"psi{c.psi:.4g}_tau0{c.tau0:.4g}_mu{c.mu:g}_nu{c.nu:g}"
+        for key, widget in self.downloads.items():
+            widget.filename = f"zharii_{key}_{tag}.csv"
+
+    def _write_url(self) -> None:
+        loc = pn.state.location
+        if loc is not None and pn.state.curdoc is not None:
+            loc.search = "?" + urlencode(self.state.query())
+
+    def view(self) -> pn.template.BootstrapTemplate:
+        """The page: controls in the sidebar, scenes in the main area."""
+        sidebar = [
+            self.preset_select,
+            pn.Row(self.reset_button, self.downloads["curves"]),
+            self.psi_slider, self.tau0_slider, self.mu_slider, self.nu_slider,
+            pn.pane.Markdown("### Time"),
+            self.tau_slider,
+            pn.Row(self.play_button, self.step_button),
+            self.speed_slider,
+            self.log_box,
+            self.physical_card,
+            pn.Row(self.downloads["traction"], self.downloads["impulse"]),
+        ]
+
+        def card(*objs, title: str, flex: str = "1 1 520px") -> pn.Card:
+            return pn.Card(*objs, title=title, collapsible=False, margin=6,
+                           styles={"flex": flex, "min-width": "0"})
+
+        main = [
+            self.message,
+            pn.FlexBox(
+                card(pn.pane.Bokeh(self.traction.figure, sizing_mode="stretch_width"),
+                     self.now, title="Traction profile (Fig. 6)", flex="3 1 560px"),
+                card(pn.pane.Bokeh(self.disc.figure), title="Contact disc", flex="0 0 380px"),
+                card(self.formulas, title="Formulas of the current phase", flex="2 1 480px"),
+                card(self.readout, title="Derived quantities", flex="1 1 380px"),
+                card(pn.pane.Bokeh(self.force.figure, sizing_mode="stretch_width"),
+                     title="T(τ) (Fig. 7)"),
+                card(pn.pane.Bokeh(self.impulse.linear_figure, sizing_mode="stretch_width"),
+                     pn.pane.Bokeh(self.impulse.log_figure, sizing_mode="stretch_width"),
+                     title="Impulse (Fig. 8)"),
+                card(pn.pane.Bokeh(self.radii.figure, sizing_mode="stretch_width"),
+                     title="Radii (Fig. 4b)"),
+                card(pn.pane.Bokeh(self.motion.figure, sizing_mode="stretch_width"),
+                     title="Contact-centre motion (Fig. 9)"),
+                sizing_mode="stretch_width", align_content="flex-start"),
+            self.methods.view(),
+        ]
+        template = pn.template.BootstrapTemplate(
+            title="Zharii (1996): two elastic spheres in intermittent frictional contact",
+            sidebar=sidebar, main=main, sidebar_width=380, header_background="#0072B2")
+        template.config.raw_css.append(CSS)
+        return template
+
+    def servable(self) -> pn.template.BootstrapTemplate:
+        """Mark the page servable (the `panel serve` entry point calls this)."""
+        return self.view().servable()
+
+
+def build_explorer(query: dict | None = None) -> Explorer:
+    """Build one session's explorer; `query` defaults to the page's URL query."""
+    if query is None:
+        query = dict(pn.state.session_args) if pn.state.curdoc is not None else {}
+    return Explorer(query=query)

@@ -1,0 +1,350 @@
+"""The explorer's scenes: one Bokeh figure each, fed by one named ColumnDataSource.
+
+A scene never computes physics: it asks a `core.Contact` for the curve it shows and
+writes the numbers into its source (`source.data = ...`), so the figure itself is
+built once and only its data changes.  Two entry points:
+
+* `update_contact(c)` when a parameter changes: the curves over the whole contact;
+* `update_tau(c, tau)` on every animation frame: only what depends on tau
+  (the traction profile, the contact disc, the markers at the current tau).
+
+Sources are named after the scene (`traction`, `disc`, `force`, `impulse`, `radii`,
+`motion`) so that tests and the browser can find them with `get_model_by_name`; the
+current-tau markers live in `<name>_marker`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from bokeh.models import ColumnDataSource, DataRange1d, Range1d, Span
+from bokeh.plotting import figure
+
+from core import PHASE_NAMES, Contact, Phase, impulse_ratio
+
+TOOLS = "pan,wheel_zoom,box_zoom,reset,save"
+CURVE_POINTS = 400  # points per curve over the contact: finer than any screen needs
+PROFILE_POINTS = 301  # points across the contact diameter for the traction profile
+
+#: One colour per contact phase (Okabe-Ito, colour-blind safe).
+PHASE_COLORS: dict[int, str] = {
+    int(Phase(0)): "#999999",  # no contact
+    int(Phase(1)): "#009E73",  # full stick
+    int(Phase(2)): "#E69F00",  # slip while loading
+    int(Phase(3)): "#56B4E9",  # partial stick (annulus: counter-slip)
+    int(Phase(4)): "#0072B2",  # counter-slip
+}
+STICK_COLOR = PHASE_COLORS[1]
+LINE_COLORS = ("#000000", "#D55E00", "#0072B2", "#CC79A7", "#009E73")
+
+
+def phase_name(c: Contact, tau: float) -> str:
+    """Name of the contact phase at tau, as `core.PHASE_NAMES` spells it."""
+    return PHASE_NAMES[int(np.asarray(c.phase(tau)).reshape(-1)[0])]
+
+
+def _style(fig) -> None:
+    """Large type, readable on a projector."""
+    fig.title.text_font_size = "15pt"
+    for axis in (*fig.xaxis, *fig.yaxis):
+        axis.axis_label_text_font_size = "14pt"
+        axis.major_label_text_font_size = "12pt"
+    fig.toolbar.logo = None
+    fig.toolbar.autohide = True
+    if fig.legend:
+        fig.legend.label_text_font_size = "12pt"
+        fig.legend.background_fill_alpha = 0.7
+        fig.legend.click_policy = "hide"
+
+
+def _figure(title: str, x_label: str, y_label: str, **kwargs):
+    kwargs.setdefault("sizing_mode", "stretch_width")
+    kwargs.setdefault("height", 340)
+    kwargs.setdefault("min_width", 300)
+    return figure(title=title, x_axis_label=x_label, y_axis_label=y_label, tools=TOOLS,
+                  **kwargs)
+
+
+class Scene:
+    """Base: a figure, its named source, and the two update hooks."""
+
+    name: str = ""
+
+    def __init__(self, data: dict) -> None:
+        self.source = ColumnDataSource(data=data, name=self.name)
+
+    def update_contact(self, c: Contact) -> None:
+        """Recompute what depends on the parameters (default: nothing)."""
+
+    def update_tau(self, c: Contact, tau: float) -> None:
+        """Recompute what depends on the current tau (default: nothing)."""
+
+    def table(self) -> dict[str, np.ndarray]:
+        """The data shown, for the CSV download."""
+        return {k: np.asarray(v) for k, v in self.source.data.items()}
+
+
+class TractionScene(Scene):
+    """Fig. 6: tau_u(r) / (mu p*) across the diameter at the current tau."""
+
+    name = "traction"
+
+    def __init__(self) -> None:
+        super().__init__({k: [] for k in ("r", "traction", "upper", "lower", "stick_lo",
+                                          "stick_hi")})
+        fig = _figure("Traction", "r / a*", "traction  τᵤ / (μ p*)")
+        fig.varea("r", "stick_lo", "stick_hi", source=self.source, fill_color=STICK_COLOR,
+                  fill_alpha=0.25, legend_label="stick zone")
+        fig.line("r", "upper", source=self.source, line_dash="dashed", color="grey",
+                 line_width=2, legend_label="±μ p")
+        fig.line("r", "lower", source=self.source, line_dash="dashed", color="grey",
+                 line_width=2)
+        self.line = fig.line("r", "traction", source=self.source, color="black", line_width=3,
+                             legend_label="τᵤ")
+        fig.legend.location = "bottom_left"
+        _style(fig)
+        self.figure = fig
+
+    def update_contact(self, c: Contact) -> None:
+        a_max = float(c.contact_radius(math.pi / 2))
+        p_max = float(c.pressure(0.0, math.pi / 2))
+        self.r_grid = np.linspace(-1.05 * a_max, 1.05 * a_max, PROFILE_POINTS)
+        self.figure.x_range.start, self.figure.x_range.end = -1.1 * a_max, 1.1 * a_max
+        self.figure.y_range.start, self.figure.y_range.end = -1.15 * p_max, 1.15 * p_max
+
+    def update_tau(self, c: Contact, tau: float) -> None:
+        a = float(c.contact_radius(tau))
+        b = float(c.stick_radius(tau))
+        r = np.unique(np.concatenate([self.r_grid, [-a, a, -b, b]]))
+        p = c.pressure(r, tau)
+        stick = np.abs(r) <= b if b > 0 else np.zeros(r.shape, bool)
+        phase = int(np.asarray(c.phase(tau)).reshape(-1)[0])
+        self.source.data = {
+            "r": r,
+            "traction": c.traction(r, tau),
+            "upper": p,
+            "lower": -p,
+            "stick_lo": np.where(stick, -p, 0.0),
+            "stick_hi": np.where(stick, p, 0.0),
+        }
+        self.line.glyph.line_color = PHASE_COLORS[phase] if phase != 1 else "black"
+        self.figure.title.text = f"Traction at τ = {tau:.4f} rad: {PHASE_NAMES[phase]}"
+
+
+class DiscScene(Scene):
+    """Top view of the contact disc: stick disc and slip annulus coloured by phase."""
+
+    name = "disc"
+
+    def __init__(self) -> None:
+        super().__init__({"x": [0.0, 0.0], "y": [0.0, 0.0], "inner": [0.0, 0.0],
+                          "outer": [0.0, 0.0], "color": [STICK_COLOR, STICK_COLOR],
+                          "label": ["stick", "slip"]})
+        fig = _figure("Contact disc (top view)", "x / a*", "y / a*", match_aspect=True,
+                      sizing_mode="fixed", width=350, height=400)
+        self.envelope = fig.circle(0, 0, radius=1.0, fill_alpha=0, line_dash="dotted",
+                                   line_color="grey", line_width=2)
+        fig.annulus("x", "y", inner_radius="inner", outer_radius="outer", source=self.source,
+                    fill_color="color", line_color="black", line_width=1,
+                    legend_field="label")
+        fig.x_range.start, fig.x_range.end = -1.15, 1.15
+        fig.y_range.start, fig.y_range.end = -1.15, 1.15
+        legend = fig.legend[0]
+        legend.orientation = "horizontal"
+        fig.add_layout(legend, "below")
+        _style(fig)
+        self.figure = fig
+
+    def update_contact(self, c: Contact) -> None:
+        a_max = float(c.contact_radius(math.pi / 2))
+        self.envelope.glyph.radius = a_max
+        self.figure.x_range.start, self.figure.x_range.end = -1.15 * a_max, 1.15 * a_max
+        self.figure.y_range.start, self.figure.y_range.end = -1.15 * a_max, 1.15 * a_max
+
+    def update_tau(self, c: Contact, tau: float) -> None:
+        a = float(c.contact_radius(tau))
+        b = float(c.stick_radius(tau))
+        phase = int(np.asarray(c.phase(tau)).reshape(-1)[0])
+        slip = "counter-slip" if phase in (3, 4) else "slip"
+        self.source.data = {
+            "x": [0.0, 0.0], "y": [0.0, 0.0], "inner": [0.0, b], "outer": [b, a],
+            "color": [STICK_COLOR, PHASE_COLORS[4 if phase == 3 else phase]],
+            "label": ["stick", slip],
+        }
+
+
+class CurveScene(Scene):
+    """A scene of curves over tau with markers (and a vertical line) at the current tau.
+
+    Subclasses list their curves as (column, legend, colour, dash) in `curves` and
+    implement `columns(c, tau)` returning each column's values.
+    """
+
+    curves: tuple[tuple[str, str, str, str], ...] = ()
+    title = ""
+    y_label = ""
+
+    def __init__(self) -> None:
+        super().__init__({"tau": [], **{col: [] for col, *_ in self.curves}})
+        self.marker = ColumnDataSource({"x": [], "y": [], "color": []}, name=f"{self.name}_marker")
+        fig = _figure(self.title, "τ = ωt (rad)", self.y_label)
+        for col, label, color, dash in self.curves:
+            fig.line("tau", col, source=self.source, color=color, line_width=3, line_dash=dash,
+                     legend_label=label)
+        fig.scatter("x", "y", source=self.marker, size=13, color="color", line_color="black")
+        self.span = Span(location=0.0, dimension="height", line_color="#666666", line_width=2,
+                         line_dash="dotted")
+        fig.add_layout(self.span)
+        _style(fig)
+        self.figure = fig
+
+    def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
+        """Values of every curve at the times tau (an array)."""
+        raise NotImplementedError
+
+    def update_contact(self, c: Contact) -> None:
+        tau = c.tau_grid(CURVE_POINTS)
+        self.source.data = {"tau": tau, **self.columns(c, tau)}
+
+    def update_tau(self, c: Contact, tau: float) -> None:
+        values = self.columns(c, np.array([tau]))
+        self.marker.data = {
+            "x": [tau] * len(self.curves),
+            "y": [float(values[col][0]) for col, *_ in self.curves],
+            "color": [color for _, _, color, _ in self.curves],
+        }
+        self.span.location = tau
+
+
+class ForceScene(CurveScene):
+    """Fig. 7: T / T0 over the contact with the Coulomb bounds +-mu P / T0."""
+
+    name = "force"
+    title = "Tangential force T / T₀"
+    y_label = "T / T₀"
+    curves = (
+        ("T", "T / T₀", "#000000", "solid"),
+        ("muP", "+μP / T₀", "#999999", "dashed"),
+        ("neg_muP", "−μP / T₀", "#999999", "dashed"),
+    )
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.family = ColumnDataSource({"xs": [], "ys": [], "label": [], "color": []},
+                                       name="force_family")
+        self.figure.multi_line("xs", "ys", source=self.family, color="color", line_width=2,
+                               line_alpha=0.7, legend_field="label")
+        self.figure.legend.location = "bottom_left"
+
+    def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
+        n = c.normal_force(tau)  # P / P0 = mu P / T0
+        return {"T": c.tangential_force(tau), "muP": n, "neg_muP": -n}
+
+    def set_family(self, contacts: list[Contact]) -> None:
+        """Overlay T / T0 of further contacts (the paper's Fig. 7 families)."""
+        grids = [c.tau_grid(CURVE_POINTS) for c in contacts]
+        self.family.data = {
+            "xs": grids,
+            "ys": [c.tangential_force(t) for c, t in zip(contacts, grids, strict=True)],
+            "label": [f"ψ = {c.psi:g}" for c in contacts],
+            "color": [LINE_COLORS[1 + i % 4] for i in range(len(contacts))],
+        }
+
+
+class RadiiScene(CurveScene):
+    """Fig. 4b: approach, contact radius a and stick radius b against tau."""
+
+    name = "radii"
+    title = "Approach α/(H−h), contact radius a/a*, stick radius b/a*"
+    y_label = "dimensionless"
+    curves = (
+        ("approach", "α / (H−h)", "#000000", "dashed"),
+        ("a", "a / a*", "#D55E00", "solid"),
+        ("b", "b / a*", "#009E73", "solid"),
+    )
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.figure.legend.location = "top_left"
+
+    def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
+        return {"approach": c.approach(tau), "a": c.contact_radius(tau),
+                "b": c.stick_radius(tau)}
+
+
+class MotionScene(CurveScene):
+    """Fig. 9: velocity v2 and displacement u2 of the contact centre, with the drive."""
+
+    name = "motion"
+    title = "Contact-centre motion (Fig. 9)"
+    y_label = "v/(ωu₀),  u/u₀"
+    curves = (
+        ("v2", "v₂ / (ω u₀)", "#D55E00", "solid"),
+        ("u2", "u₂ / u₀", "#0072B2", "solid"),
+        ("drive_v", "du₀ₓ/dt / (ω u₀)", "#D55E00", "dotted"),
+        ("drive_u", "u₀ₓ / u₀", "#0072B2", "dotted"),
+    )
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.figure.legend.location = "bottom_left"
+
+    def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
+        return {"v2": c.centre_velocity(tau), "u2": c.centre_displacement(tau),
+                "drive_v": c.drive_velocity(tau), "drive_u": c.drive_displacement(tau)}
+
+
+class ImpulseScene(Scene):
+    """Fig. 8: T_imp / (mu P_imp) against psi at the current tau0, current psi marked.
+
+    Two figures share the source: a linear psi axis (0 to 30, the paper's range) and a
+    logarithmic one reaching psi = 1e6; `set_log` shows one of them.
+    """
+
+    name = "impulse"
+    LINEAR_MAX = 30.0
+    LOG_RANGE = (1e-3, 1e6)
+
+    def __init__(self) -> None:
+        super().__init__({"psi": [], "ratio": []})
+        self.marker = ColumnDataSource({"psi": [], "ratio": []}, name="impulse_marker")
+        self.log = False
+        self.linear_figure = self._make("linear")
+        self.log_figure = self._make("log")
+        self.log_figure.visible = False
+        self.figure = self.linear_figure
+
+    def _make(self, axis: str):
+        x_range = Range1d(*self.LOG_RANGE) if axis == "log" else DataRange1d(start=0.0)
+        fig = _figure("Tangential impulse T_imp / (μ P_imp)", "ψ", "T_imp / (μ P_imp)",
+                      x_axis_type=axis, x_range=x_range)
+        fig.line("psi", "ratio", source=self.source, color="black", line_width=3)
+        fig.scatter("psi", "ratio", source=self.marker, size=14, color="#D55E00",
+                    line_color="black")
+        _style(fig)
+        return fig
+
+    def set_log(self, log: bool) -> None:
+        """Show the log-psi figure (True) or the linear one (False)."""
+        self.log = log
+        self.log_figure.visible = log
+        self.linear_figure.visible = not log
+        self.figure = self.log_figure if log else self.linear_figure
+
+    def psi_grid(self, psi: float) -> np.ndarray:
+        """The psi values plotted: screen-fine, through psi = 1 and the current psi."""
+        if self.log:
+            lo, hi = self.LOG_RANGE
+            grid = np.geomspace(min(lo, psi), max(hi, psi), CURVE_POINTS)
+        else:
+            grid = np.linspace(0.0, max(self.LINEAR_MAX, 1.1 * psi), CURVE_POINTS)
+        return np.unique(np.concatenate([grid, [1.0, psi]]))
+
+    def update_contact(self, c: Contact) -> None:
+        psi = self.psi_grid(c.psi)
+        if self.log:
+            self.log_figure.x_range.start = min(self.LOG_RANGE[0], psi[0])
+            self.log_figure.x_range.end = max(self.LOG_RANGE[1], psi[-1])
+        self.source.data = {"psi": psi, "ratio": np.asarray(impulse_ratio(psi, c.tau0), float)}
+        self.marker.data = {"psi": [c.psi], "ratio": [c.impulse_ratio]}

@@ -1,0 +1,320 @@
+"""Server-side tests of the explorer (no browser): widgets in, named sources out.
+
+Every plotted number must be exactly what `core` computes for the current state.
+"""
+
+from __future__ import annotations
+
+import io
+import itertools
+import math
+
+import numpy as np
+import pytest
+
+from app.explorer import CONTACT_SECONDS, Explorer
+from app.scenes import CURVE_POINTS
+from app.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
+from core import PHASE_NAMES, Contact, impulse_ratio
+
+eq = np.testing.assert_array_equal
+
+
+@pytest.fixture
+def ex() -> Explorer:
+    return Explorer()
+
+
+def contact_of(ex: Explorer) -> Contact:
+    s = ex.state
+    return Contact(s.psi, s.tau0, mu=s.mu, nu=s.nu)
+
+
+def assert_sources_match_core(ex: Explorer) -> None:
+    """Every named source holds what core computes for the explorer's state."""
+    c, tau = contact_of(ex), ex.state.tau
+    grid = c.tau_grid(CURVE_POINTS)
+
+    d = ex.force.source.data
+    eq(d["tau"], grid)
+    eq(d["T"], c.tangential_force(grid))
+    eq(d["muP"], c.normal_force(grid))
+    eq(d["neg_muP"], -c.normal_force(grid))
+    m = ex.force.marker.data
+    assert m["x"] == [tau] * 3
+    assert m["y"][0] == float(c.tangential_force(np.array([tau]))[0])
+
+    d = ex.radii.source.data
+    eq(d["tau"], grid)
+    eq(d["approach"], c.approach(grid))
+    eq(d["a"], c.contact_radius(grid))
+    eq(d["b"], c.stick_radius(grid))
+
+    d = ex.motion.source.data
+    eq(d["v2"], c.centre_velocity(grid))
+    eq(d["u2"], c.centre_displacement(grid))
+    eq(d["drive_v"], c.drive_velocity(grid))
+    eq(d["drive_u"], c.drive_displacement(grid))
+
+    d = ex.traction.source.data
+    r = np.asarray(d["r"])
+    assert r.size > 300 and np.all(np.diff(r) > 0)
+    eq(d["traction"], c.traction(r, tau))
+    eq(d["upper"], c.pressure(r, tau))
+    a, b = float(c.contact_radius(tau)), float(c.stick_radius(tau))
+    assert {a, -a} <= set(r.tolist())  # the contact edge is drawn exactly
+    stick = (np.abs(r) <= b) & (b > 0)
+    eq(d["stick_hi"], np.where(stick, c.pressure(r, tau), 0.0))
+    phase = PHASE_NAMES[int(c.phase(tau))]
+    assert ex.traction.figure.title.text.endswith(phase)
+
+    d = ex.disc.source.data
+    assert d["inner"] == [0.0, b] and d["outer"] == [b, a]
+
+    d = ex.impulse.source.data
+    eq(d["ratio"], impulse_ratio(np.asarray(d["psi"]), c.tau0))
+    assert ex.impulse.marker.data == {"psi": [c.psi], "ratio": [c.impulse_ratio]}
+
+
+def test_default_state_is_the_default_preset(ex: Explorer) -> None:
+    p = PRESETS[DEFAULT_PRESET]
+    assert (ex.state.psi, ex.state.tau0, ex.state.tau) == (p.psi, p.tau0, p.tau)
+    assert_sources_match_core(ex)
+    assert int(contact_of(ex).phase(ex.state.tau)) == 3  # Fig. 6e: partial stick
+    assert not ex.message.visible
+
+
+@pytest.mark.parametrize(("widget", "value"), [
+    ("psi_slider", 0.6), ("psi_slider", 7.5), ("psi_slider", 2e5),
+    ("tau0_slider", -0.4), ("tau0_slider", 1.2), ("mu_slider", 0.55), ("nu_slider", 0.05),
+])
+def test_widget_change_recomputes_every_source(ex: Explorer, widget: str, value: float) -> None:
+    before = np.asarray(ex.force.source.data["T"]).copy()
+    getattr(ex, widget).value = value
+    assert getattr(ex.state, widget.removesuffix("_slider")) == value
+    assert_sources_match_core(ex)
+    c = contact_of(ex)
+    assert c.tau0 <= ex.state.tau <= c.tau_end
+    assert (ex.tau_slider.start, ex.tau_slider.end) == (c.tau0, c.tau_end)
+    if widget in ("psi_slider", "tau0_slider"):
+        after = np.asarray(ex.force.source.data["T"])
+        assert after.shape != before.shape or not np.array_equal(after, before)
+    assert ex.state.preset == ""  # an edit leaves the preset
+
+
+def test_theta_readout_follows_mu_and_nu(ex: Explorer) -> None:
+    ex.mu_slider.value = 0.5
+    c = contact_of(ex)
+    assert f"{math.degrees(c.theta0):.3f}°" in ex.readout.object
+    assert f"{math.degrees(c.theta):.3f}°" in ex.readout.object
+
+
+def test_tau_change_updates_only_tau_dependent_data(ex: Explorer) -> None:
+    force_data = ex.force.source.data
+    ex.tau_slider.value = 1.0
+    assert ex.state.tau == 1.0
+    assert ex.force.source.data is force_data  # curves untouched by a tau change
+    assert ex.force.span.location == 1.0
+    assert_sources_match_core(ex)
+    assert "Slip while loading" in ex.formulas.object
+
+
+def test_tau_is_clamped_into_the_new_contact(ex: Explorer) -> None:
+    ex.tau_slider.value = 0.6
+    ex.tau0_slider.value = 1.0
+    assert ex.state.tau == 1.0
+    assert_sources_match_core(ex)
+
+
+def test_log_psi_axis_reaches_1e6(ex: Explorer) -> None:
+    ex.log_box.value = True
+    psi = np.asarray(ex.impulse.source.data["psi"])
+    assert psi.min() <= 1e-3 and psi.max() >= 1e6 and 1.0 in psi
+    assert ex.impulse.log_figure.visible and not ex.impulse.linear_figure.visible
+    assert_sources_match_core(ex)
+    ex.log_box.value = False
+    assert np.asarray(ex.impulse.source.data["psi"]).max() == pytest.approx(30.0)
+
+
+def test_large_psi_in_linear_mode_extends_the_axis(ex: Explorer) -> None:
+    ex.psi_slider.value = 100.0
+    psi = np.asarray(ex.impulse.source.data["psi"])
+    assert psi.max() >= 100.0 and 100.0 in psi
+
+
+@pytest.mark.parametrize("name", list(PRESETS))
+def test_presets_reproduce_the_papers_parameters(ex: Explorer, name: str) -> None:
+    ex.tau0_slider.value = 0.1  # leave the default first
+    ex.preset_select.value = name
+    p = PRESETS[name]
+    assert (ex.state.psi, ex.state.tau0, ex.state.tau) == (p.psi, p.tau0, p.tau)
+    assert (ex.state.mu, ex.state.nu) == (0.2, 0.3)
+    assert ex.state.preset == name
+    assert_sources_match_core(ex)
+    fam = ex.force.family.data
+    assert [float(x.split("= ")[1]) for x in fam["label"]] == list(p.family)
+    for psi, ys in zip(p.family, fam["ys"], strict=True):
+        c = Contact(psi, p.tau0)
+        eq(ys, c.tangential_force(c.tau_grid(CURVE_POINTS)))
+
+
+def test_fig6_presets_walk_through_the_phases(ex: Explorer) -> None:
+    phases = []
+    for key in ("fig6a", "fig6b", "fig6c", "fig6d", "fig6e", "fig6f"):
+        ex.state.apply_preset(key)
+        phases.append(int(contact_of(ex).phase(ex.state.tau)))
+    assert phases[:3] == [2, 2, 2] and phases[3:5] == [3, 3]
+    # Fig. 6f sits at tau1 = 3 pi / 4, where the stick disc has just vanished
+    assert ex.disc.source.data["inner"][1] == pytest.approx(0.0, abs=1e-6)
+    assert contact_of(ex).tau1 == pytest.approx(3 * math.pi / 4, rel=1e-12)
+
+
+def test_reset_restores_defaults(ex: Explorer) -> None:
+    ex.psi_slider.value = 9.0
+    ex.state.playing = True
+    ex.reset_button.clicks += 1
+    assert ex.state.psi == SQRT2_1 and ex.state.preset == DEFAULT_PRESET
+    assert not ex.state.playing
+    assert_sources_match_core(ex)
+
+
+# ---------------------------------------------------------------- URL query
+
+
+def test_parse_query_accepts_good_values() -> None:
+    values, messages = parse_query({"psi": "6.46", "tau0": "0.3", "mu": "0.25", "nu": "0.2",
+                                    "tau": "2.0", "log_psi": "1"})
+    assert messages == []
+    assert values == {"psi": 6.46, "tau0": 0.3, "mu": 0.25, "nu": 0.2, "tau": 2.0,
+                      "log_psi": True, "preset": ""}
+
+
+def test_parse_query_reads_session_args_bytes() -> None:
+    values, messages = parse_query({"psi": [b"1e6"], "preset": [b"fig9"]})
+    assert messages == [] and values["psi"] == 1e6 and values["tau"] == PRESETS["fig9"].tau
+
+
+@pytest.mark.parametrize(("query", "fragment"), [
+    ({"psi": "abc"}, "psi='abc' is not a number"),
+    ({"psi": "0"}, "out of range (0, 1e+06]"),
+    ({"psi": "2e6"}, "out of range"),
+    ({"psi": "nan"}, "not a finite number"),
+    ({"tau0": "1.6"}, "tau0=1.6 is out of range [-1.5, 1.5]"),
+    ({"mu": "-1"}, "mu=-1 is out of range"),
+    ({"nu": "0.5"}, "nu=0.5 is out of range [0, 0.5)"),
+    ({"tau": "3.1"}, "outside the contact"),
+    ({"tau0": "1", "tau": "2.5"}, "tau=2.5 is outside the contact [1, 2.142]"),
+    ({"log_psi": "maybe"}, "log_psi='maybe' must be 0 or 1"),
+    ({"preset": "fig99"}, "preset='fig99' is unknown"),
+    ({"colour": "red"}, "unknown parameter 'colour'"),
+])
+def test_parse_query_rejects_bad_values(query: dict, fragment: str) -> None:
+    values, messages = parse_query(query)
+    assert len(messages) == 1 and fragment in messages[0], messages
+    rejected = list(query)[-1]
+    assert rejected not in values
+
+
+def test_bad_query_shows_message_and_keeps_defaults() -> None:
+    ex = Explorer(query={"psi": [b"-3"], "mu": [b"0.3"]})
+    assert ex.message.visible and "psi=-3 is out of range" in ex.message.object
+    assert ex.state.psi == ExplorerState.param.psi.default
+    assert ex.state.mu == 0.3  # the good value is still applied
+    assert_sources_match_core(ex)
+
+
+def test_good_query_sets_state_and_round_trips() -> None:
+    ex = Explorer(query={"psi": "12.5", "tau0": "-0.2", "tau": "2.5", "log_psi": "1"})
+    assert not ex.message.visible
+    assert (ex.state.psi, ex.state.tau0, ex.state.tau, ex.state.log_psi) == (12.5, -0.2, 2.5,
+                                                                             True)
+    assert_sources_match_core(ex)
+    again, messages = parse_query(ex.state.query())
+    assert messages == [] and again["psi"] == 12.5 and again["tau"] == 2.5
+
+
+# --------------------------------------------------------------------- CSV
+
+
+def read_csv(text: str) -> dict[str, np.ndarray]:
+    names = text.splitlines()[0].split(",")
+    body = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=1, ndmin=2)
+    return {n: body[:, i] for i, n in enumerate(names)}
+
+
+def test_csv_curves_hold_the_plotted_data(ex: Explorer) -> None:
+    table = read_csv(ex.csv_text("curves"))
+    assert list(table) == ["tau", "T", "muP", "neg_muP", "approach", "a", "b", "v2", "u2",
+                           "drive_v", "drive_u"]
+    c = contact_of(ex)
+    np.testing.assert_allclose(table["tau"], c.tau_grid(CURVE_POINTS), rtol=1e-9)
+    np.testing.assert_allclose(table["T"], c.tangential_force(table["tau"]), atol=1e-9)
+    np.testing.assert_allclose(table["b"], ex.radii.source.data["b"], rtol=1e-9, atol=1e-12)
+
+
+def test_csv_traction_and_impulse(ex: Explorer) -> None:
+    tr = read_csv(ex.csv_text("traction"))
+    np.testing.assert_allclose(tr["traction"], ex.traction.source.data["traction"], atol=1e-9)
+    im = read_csv(ex.csv_text("impulse"))
+    np.testing.assert_allclose(im["ratio"], impulse_ratio(im["psi"], ex.state.tau0),
+                               rtol=1e-8, atol=1e-12)
+    assert ex.downloads["curves"].filename.startswith("zharii_curves_psi2.414")
+    assert ex.downloads["impulse"].callback().read() == ex.csv_text("impulse")
+
+
+# --------------------------------------------------------------- animation
+
+
+def test_step_advances_tau_and_wraps(ex: Explorer) -> None:
+    c = contact_of(ex)
+    ex.state.tau = c.tau0
+    ex.speed_slider.value = 2.0
+    new = ex.step(0.1)
+    assert new == pytest.approx(c.tau0 + 2.0 * (c.tau_end - c.tau0) * 0.1 / CONTACT_SECONDS)
+    assert ex.state.tau == new
+    assert_sources_match_core(ex)
+    ex.state.tau = c.tau_end - 1e-3
+    assert ex.step(0.5) == c.tau_end  # the last frame lands on the end of contact
+    assert ex.step() == c.tau0  # then the contact starts again
+
+
+def test_step_button_and_play_toggle(ex: Explorer) -> None:
+    tau = ex.state.tau
+    ex.step_button.clicks += 1
+    assert ex.state.tau > tau
+    ex.play_button.clicks += 1
+    assert ex.state.playing and "Pause" in ex.play_button.label
+    ticks = [ex.state.tau]
+    for _ in range(3):
+        ex._tick()
+        ticks.append(ex.state.tau)
+    assert all(b > a for a, b in itertools.pairwise(ticks))
+    ex.play_button.clicks += 1
+    assert not ex.state.playing and "Play" in ex.play_button.label
+
+
+# ---------------------------------------------------------- physical units
+
+
+def test_physical_inputs_give_si_scales(ex: Explorer) -> None:
+    s = ex.state
+    s.param.update(R=0.005, H=2e-6, u0=3e-6, h=1e-6, omega=2 * math.pi * 30e3)
+    ex.material_select.value = "steel"
+    ex.physical_box.value = True
+    c = Contact.from_physical(R=0.005, G=s.G, nu=s.nu, mu=s.mu, H=2e-6, u0=3e-6, h=1e-6,
+                              omega=2 * math.pi * 30e3)
+    assert (s.psi, s.tau0) == (c.psi, c.tau0)
+    assert ex.psi_slider.disabled and ex.tau0_slider.disabled
+    assert_sources_match_core(ex)
+    assert f"{c.scales.T0:.4g} N" in ex.readout.object
+    table = read_csv(ex.csv_text("curves"))
+    np.testing.assert_allclose(table["T_N"], table["T"] * c.scales.T0, rtol=1e-9)
+    assert " N, a = " in ex.now.object
+
+
+def test_invalid_physical_inputs_show_a_message(ex: Explorer) -> None:
+    ex.physical_box.value = True
+    psi = ex.state.psi
+    ex.state.h = 5 * ex.state.H  # h must be < H
+    assert ex.message.visible and "not applied" in ex.message.object
+    assert ex.state.psi == psi
