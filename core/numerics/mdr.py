@@ -64,9 +64,10 @@ def step_springs(u: NDArray[np.float64], w: NDArray[np.float64], w_prev: NDArray
 def stick_radius(x: NDArray[np.float64], margin: NDArray[np.float64], a: float) -> float:
     """Radius b / a* of the central stick zone from the stick margins of the springs.
 
-    The margin w - |u_trial| is smooth (quadratic in x) across the stick boundary, so
-    linear interpolation of its root keeps the O(N^-2) accuracy. All springs in contact
-    sticking gives b = a; a slipping centre gives b = 0.
+    The margin w - |u_trial| is smooth (a concave quadratic in x) across the stick
+    boundary, so the linear interpolation of its root keeps the O(N^-2) accuracy; when
+    every spring in contact sticks, the root is extrapolated from the last two springs
+    and capped at a (full stick gives b = a). A slipping centre gives b = 0.
     """
     inside = x < a
     m = margin[inside]
@@ -75,10 +76,13 @@ def stick_radius(x: NDArray[np.float64], margin: NDArray[np.float64], a: float) 
         return 0.0
     neg = np.flatnonzero(m < -tol)
     if neg.size == 0:
-        return a
-    k = neg[0]
+        if m.size < 2 or m[-1] <= tol or m[-2] <= m[-1]:
+            return a
+        k = m.size - 1
+    else:
+        k = neg[0]
     x0, x1, m0, m1 = x[k - 1], x[k], m[k - 1], m[k]
-    return float(x0 + (x1 - x0) * m0 / (m0 - m1))
+    return float(min(x0 + (x1 - x0) * m0 / (m0 - m1), a))
 
 
 def run(psi: float, tau0: float, tau: NDArray[np.float64], n: int

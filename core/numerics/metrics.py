@@ -15,7 +15,8 @@ from core.numerics.result import MethodResult
 
 REVERSAL_GAP = 1e-9
 """b jumps from 0 (slip) to a* (partial stick) at tau = pi/2: points closer than this
-to pi/2 are left out of the stick-radius error."""
+to pi/2 are left out of the stick-radius error. At psi = 1 stick and slip coincide
+(|tau_u| = mu p everywhere), b is not defined by the tractions and its error is nan."""
 
 
 @dataclass(frozen=True)
@@ -36,7 +37,7 @@ def errors(res: MethodResult, contact) -> Errors:
     """Errors of ``res`` against ``contact`` (a ``core.Contact``)."""
     t_err = float(np.max(np.abs(res.T - np.asarray(contact.tangential_force(res.tau)))))
     i_err = float(abs(res.impulse_ratio - contact.impulse_ratio))
-    if res.b is None:
+    if res.b is None or contact.psi == 1.0:
         b_err = float("nan")
     else:
         keep = np.abs(res.tau - np.pi / 2) > REVERSAL_GAP

@@ -5,7 +5,8 @@ and so test the elliptic closed form of the impulses (eqs 10, 11, 41) rather tha
 traction solution. The ratio is T_imp / (mu P_imp) = int T / T0 dtau / int P / P0 dtau.
 
 * ``quad``: scipy.integrate.quad (QUADPACK QAGP) with ``limit = resolution``
-  subintervals (at least one more than the breakpoints), breakpoints at pi/2 (and tau1 for psi > 1) where T'' jumps.
+  subintervals (at least one more than the breakpoints), breakpoints at pi/2 (and tau1
+  for psi > 1) where T'' jumps.
 * ``gauss_legendre``: one fixed ``resolution``-point Gauss-Legendre rule over the whole
   contact [tau0, pi - tau0]; its algebraic convergence shows the kinks of T.
 """
