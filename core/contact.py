@@ -47,8 +47,9 @@ class Contact:
     def __post_init__(self) -> None:
         checks = {
             "psi": check_real("psi", self.psi, 0.0, PSI_MAX),
-            "tau0": check_real("tau0", self.tau0, -math.pi / 2, math.pi / 2,
-                               lo_open=True, hi_open=True),
+            "tau0": check_real(
+                "tau0", self.tau0, -math.pi / 2, math.pi / 2, lo_open=True, hi_open=True
+            ),
             "mu": check_real("mu", self.mu, 0.0, lo_open=True),
             "nu": check_real("nu", self.nu, -1.0, 0.5, lo_open=True),
         }
@@ -57,7 +58,15 @@ class Contact:
 
     @classmethod
     def from_physical(
-        cls, *, R: float, G: float, nu: float, mu: float, H: float, u0: float, h: float,
+        cls,
+        *,
+        R: float,
+        G: float,
+        nu: float,
+        mu: float,
+        H: float,
+        u0: float,
+        h: float,
         omega: float,
     ) -> Contact:
         """The contact of SI inputs (R, H, u0, h in m; G in Pa; omega in rad/s), with
@@ -185,7 +194,9 @@ class Contact:
         return np.cos(np.asarray(tau, dtype=float))
 
 
-def impulse_ratio(psi: ArrayLike, tau0: float, mu: float = 0.2, nu: float = 0.3) -> NDArray[np.float64]:
+def impulse_ratio(
+    psi: ArrayLike, tau0: float, mu: float = 0.2, nu: float = 0.3
+) -> NDArray[np.float64]:
     """T_imp / (mu P_imp) (eq 41) for an array of psi at one tau0; the curve of Fig. 8.
 
     Independent of mu and nu (accepted for symmetry with ``Contact``). psi is validated
@@ -198,7 +209,7 @@ def impulse_ratio(psi: ArrayLike, tau0: float, mu: float = 0.2, nu: float = 0.3)
     bad = ~np.isfinite(psi) | (psi < 0.0) | (psi > PSI_MAX)
     if bad.any():
         raise ValueError(
-            f"psi = {psi[bad].flat[0]!r} is outside the allowed range [0, {PSI_MAX:g}]"
+            f"psi = {float(psi[bad].flat[0])!r} is outside the allowed range [0, {PSI_MAX:g}]"
         )
     e = half_width(tau0)
     return tangential.impulse_ratio(psi, math.sin(e / 2), math.cos(e / 2))

@@ -56,8 +56,13 @@ class CoulombReport:
     @property
     def worst(self) -> float:
         """The largest of the five violations."""
-        return max(self.traction_excess, self.form_residual, self.stick_velocity,
-                   self.slip_traction, self.slip_direction)
+        return max(
+            self.traction_excess,
+            self.form_residual,
+            self.stick_velocity,
+            self.slip_traction,
+            self.slip_direction,
+        )
 
 
 def _response(r: NDArray[np.float64], c: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -91,11 +96,21 @@ def coulomb_certificate(contact: Contact, n_r: int = 201, n_tau: int = 401) -> C
     b_form = np.where(ph == Phase.FULL_STICK, 0.0, b)
     form = kappa_a * p + kappa_b * np.sqrt(np.maximum(b_form**2 - r**2, 0.0))
 
-    rel = np.cos(tau) * (psi - (2.0 / np.pi) * (
-        kappa_a * _response(np.broadcast_to(r, t.shape), np.broadcast_to(a, t.shape))
-        + kappa_b * (psi + 1.0) / 2.0
-        * _response(np.broadcast_to(r, t.shape), np.broadcast_to(b_form, t.shape))
-    )) / max(psi, 1.0)
+    rel = (
+        np.cos(tau)
+        * (
+            psi
+            - (2.0 / np.pi)
+            * (
+                kappa_a * _response(np.broadcast_to(r, t.shape), np.broadcast_to(a, t.shape))
+                + kappa_b
+                * (psi + 1.0)
+                / 2.0
+                * _response(np.broadcast_to(r, t.shape), np.broadcast_to(b_form, t.shape))
+            )
+        )
+        / max(psi, 1.0)
+    )
 
     away_from_zeros = (np.abs(r - a) > ZERO_BAND) & (np.abs(r - b_form) > ZERO_BAND)
     stick = inside & (r < b)

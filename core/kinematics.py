@@ -21,7 +21,9 @@ from core.clock import one_minus_square
 from core.tangential import Phase, phase
 
 
-def centre_displacement(w: NDArray[np.float64], psi: float, sin_half_e: float) -> NDArray[np.float64]:
+def centre_displacement(
+    w: NDArray[np.float64], psi: float, sin_half_e: float
+) -> NDArray[np.float64]:
     """u2 / u0 (eq 43); 0 outside contact and at both contact ends."""
     s2 = sin_half_e**2
     a2 = one_minus_square(w)
@@ -40,8 +42,12 @@ def centre_velocity(
     """v2 / (omega u0) (eq 42); 0 outside contact. Jumps at tau0, tau1 and pi - tau0."""
     ph = phase(w, psi)
     factor = np.select(
-        [ph == Phase.FULL_STICK, ph == Phase.SLIP, ph == Phase.PARTIAL_STICK,
-         ph == Phase.COUNTER_SLIP],
+        [
+            ph == Phase.FULL_STICK,
+            ph == Phase.SLIP,
+            ph == Phase.PARTIAL_STICK,
+            ph == Phase.COUNTER_SLIP,
+        ],
         [0.5, 0.5 / max(psi, 1.0), 0.5, -0.5 / max(psi, 1.0)],
         0.0,
     )

@@ -36,10 +36,16 @@ class PhysicalInputs:
     omega: float
 
     def __post_init__(self) -> None:
-        for name, lo, lo_open in (("R", 0.0, True), ("G", 0.0, True), ("H", 0.0, True),
-                                  ("omega", 0.0, True), ("u0", 0.0, False)):
-            object.__setattr__(self, name, check_real(name, getattr(self, name), lo,
-                                                       lo_open=lo_open))
+        for name, lo, lo_open in (
+            ("R", 0.0, True),
+            ("G", 0.0, True),
+            ("H", 0.0, True),
+            ("omega", 0.0, True),
+            ("u0", 0.0, False),
+        ):
+            object.__setattr__(
+                self, name, check_real(name, getattr(self, name), lo, lo_open=lo_open)
+            )
         object.__setattr__(self, "nu", check_real("nu", self.nu, -1.0, 0.5, lo_open=True))
         object.__setattr__(self, "mu", check_real("mu", self.mu, 0.0, lo_open=True))
         h = check_real("h", self.h)

@@ -64,7 +64,8 @@ def tau1(psi: float, sin_half_e: float, cos_half_e: float) -> float:
     if x <= 0.5:
         return float(HALF_PI_HI + (2.0 * np.arcsin(x) + HALF_PI_LO))
     one_minus_x = (psi - 1.0) / ((psi + 1.0) * (1.0 + k)) + k * cos_half_e**2 / (1.0 + sin_half_e)
-    return float(3.0 * HALF_PI_HI - (4.0 * np.arcsin(np.sqrt(0.5 * one_minus_x)) - 3.0 * HALF_PI_LO))
+    quarter = np.arcsin(np.sqrt(0.5 * one_minus_x))
+    return float(3.0 * HALF_PI_HI - (4.0 * quarter - 3.0 * HALF_PI_LO))
 
 
 def phase(w: NDArray[np.float64], psi: float) -> NDArray[np.int_]:
@@ -107,9 +108,7 @@ def tangential_force(w: NDArray[np.float64], psi: float, sin_half_e: float) -> N
     return t
 
 
-def traction(
-    r: ArrayLike, w: NDArray[np.float64], psi: float
-) -> NDArray[np.float64]:
+def traction(r: ArrayLike, w: NDArray[np.float64], psi: float) -> NDArray[np.float64]:
     """tau_u / (mu p*) at radius r (units of a*; sign of r ignored) and clock w (eqs 18, 24,
     33, 36); r and w broadcast against each other."""
     r, w = np.broadcast_arrays(np.abs(np.asarray(r, dtype=float)), w)
