@@ -38,27 +38,41 @@ def half_width(tau0: float) -> float:
     return (HALF_PI_HI - tau0) + HALF_PI_LO
 
 
+def _offset(t: NDArray[np.float64], n: NDArray[np.float64] | float) -> NDArray[np.float64]:
+    """t - n pi/2 by Cody-Waite reduction (n an odd integer, |n| < 2**20)."""
+    x = np.subtract(t, n * _PIO2[0], out=np.empty_like(t))
+    x -= n * _PIO2[1]
+    x -= n * _PIO2[2]
+    return x
+
+
 def half_offset(tau: ArrayLike) -> NDArray[np.float64]:
     """u = (tau - pi/2 - 2 pi k) / 2 with the period k chosen so that u is in [-pi/2, pi/2).
 
     The offset tau - (4k + 1) pi/2 is formed by Cody-Waite reduction, so it is exact to a
-    few ulp of itself even when tiny (grazing contact) or a few periods away.
+    few ulp of itself even when tiny (grazing contact) or a few periods away. Times already
+    in [-pi/2, 3 pi/2) (every time of one contact) take the cheap path k = 0.
     """
     t = np.asarray(tau, dtype=float)
-    if t.size and (t.min() < -HALF_PI_HI or t.max() >= 3 * HALF_PI_HI):
-        n = 4.0 * np.floor((t + HALF_PI_HI) / TWO_PI) + 1.0
-        x = ((t - n * _PIO2[0]) - n * _PIO2[1]) - n * _PIO2[2]
-    else:
-        x = ((t - _PIO2[0]) - _PIO2[1]) - _PIO2[2]
+    x = _offset(t, 1.0)  # an array, also for 0-d input: the updates below are in place
+    away = (x < -np.pi) | (x >= np.pi)
+    if away.any():
+        ta = t[away]
+        x[away] = _offset(ta, 4.0 * np.floor((ta + HALF_PI_HI) / TWO_PI) + 1.0)
     x *= 0.5
     return x
 
 
 def clock(tau: ArrayLike, sin_half_e: float) -> NDArray[np.float64]:
     """w = sin((tau - pi/2)/2) / sin(e/2): -1 at tau0, 0 at pi/2, +1 at pi - tau0."""
-    return np.sin(half_offset(tau)) / sin_half_e
+    w = half_offset(tau)
+    np.sin(w, out=w)
+    w *= 1.0 / sin_half_e
+    return w
 
 
 def one_minus_square(w: NDArray[np.float64]) -> NDArray[np.float64]:
     """(1 - w)(1 + w), clipped at 0 outside contact: the squared radius a^2 / a*^2 (eq 7, 8)."""
-    return np.maximum((1.0 - w) * (1.0 + w), 0.0)
+    out = np.subtract(1.0, w, out=np.empty_like(w))
+    out *= 1.0 + w
+    return np.maximum(out, 0.0, out=out)

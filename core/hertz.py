@@ -28,7 +28,9 @@ def contact_radius(w: NDArray[np.float64]) -> NDArray[np.float64]:
 
 def cube(a2: NDArray[np.float64]) -> NDArray[np.float64]:
     """(a2)^(3/2) without the cost of a general power."""
-    return a2 * np.sqrt(a2)
+    out = np.sqrt(a2, out=np.empty_like(a2))
+    out *= a2
+    return out
 
 
 def normal_force(w: NDArray[np.float64], sin_half_e: float) -> NDArray[np.float64]:

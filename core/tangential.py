@@ -95,15 +95,16 @@ def tangential_force(w: NDArray[np.float64], psi: float, sin_half_e: float) -> N
     T / T0 = (1 - sin tau0)^(3/2) times: psi a^3 (stick); a^3 (slip); 2 b^3 - a^3
     (partial stick); -a^3 (counter-slip), with a, b in units of a*.
     """
-    a3 = cube(one_minus_square(w))
+    t = cube(one_minus_square(w))
     scale = SQRT8 * sin_half_e**3
     if psi <= 1.0:
-        return (psi * scale) * a3
-    t = np.where(w > 0.0, -a3, a3)
-    k = float(stick_clock(psi))
-    partial = (w > 0.0) & (w < k)
+        t *= psi * scale
+        return t
+    unloading = w > 0.0
+    np.negative(t, out=t, where=unloading)
+    partial = unloading & (w < float(stick_clock(psi)))
     if partial.any():
-        t[partial] += 2.0 * cube(one_minus_square(w[partial] / k))
+        t[partial] += 2.0 * cube(one_minus_square(w[partial] / float(stick_clock(psi))))
     t *= scale
     return t
 
