@@ -21,29 +21,42 @@ to pi/2 are left out of the stick-radius error. At psi = 1 stick and slip coinci
 
 @dataclass(frozen=True)
 class Errors:
-    """Errors of one run: T (max over the run's own times), impulse ratio, stick radius
-    (nan when the method has none), and ``combined`` = max(T, impulse) used for charts."""
+    """Errors of one run: T (max over the run's own times, units T0), impulse ratio,
+    stick radius (nan when the method has none), and the relative versions: T error
+    over max |T_closed| and impulse error over |impulse ratio| (grazing contact has
+    T ~ (1 - s0)^{3/2} T0, so the absolute error alone says little there)."""
 
     T: float
     impulse: float
     b: float
+    T_rel: float
+    impulse_rel: float
 
     @property
     def combined(self) -> float:
+        """max(T error, impulse-ratio error), absolute."""
         return max(self.T, self.impulse)
+
+    @property
+    def combined_rel(self) -> float:
+        """max of the relative T and impulse-ratio errors."""
+        return max(self.T_rel, self.impulse_rel)
 
 
 def errors(res: MethodResult, contact) -> Errors:
     """Errors of ``res`` against ``contact`` (a ``core.Contact``)."""
-    t_err = float(np.max(np.abs(res.T - np.asarray(contact.tangential_force(res.tau)))))
-    i_err = float(abs(res.impulse_ratio - contact.impulse_ratio))
+    exact_T = np.asarray(contact.tangential_force(res.tau), dtype=float)
+    t_err = float(np.max(np.abs(res.T - exact_T)))
+    exact_ratio = float(contact.impulse_ratio)
+    i_err = float(abs(res.impulse_ratio - exact_ratio))
+    t_scale = float(np.max(np.abs(exact_T))) or 1.0
     if res.b is None or contact.psi == 1.0:
         b_err = float("nan")
     else:
         keep = np.abs(res.tau - np.pi / 2) > REVERSAL_GAP
         exact = np.asarray(contact.stick_radius(res.tau[keep]))
         b_err = float(np.max(np.abs(res.b[keep] - exact))) if keep.any() else float("nan")
-    return Errors(t_err, i_err, b_err)
+    return Errors(t_err, i_err, b_err, t_err / t_scale, i_err / abs(exact_ratio))
 
 
 def closed_form_time(contact_cls, psi: float, tau0: float, n: int = 200,
