@@ -49,18 +49,19 @@ _SOLVERS: dict[str, Callable[[ContactLike, int], tuple]] = {
 }
 
 INTERACTIVE_RESOLUTION: dict[str, int] = {
-    "mdr": 200,
-    "annulus": 24,
+    "mdr": 150,
+    "annulus": 14,
     "lammps_mindlin": 2000,
     "lammps_mindlin_force": 2000,
     "lammps_mindlin_rescale": 2000,
     "lammps_mindlin_rescale_force": 2000,
     "liggghts_history": 2000,
     "direnzo": 2000,
-    "quad": 50,
+    "quad": 8,
     "gauss_legendre": 64,
 }
-"""Resolution per method that computes in well under ~100 ms on one core here."""
+"""Resolution per method: median below ~60 ms per solve here over psi in [0.3, 1e4] x
+tau0 in [-1.4, 1.569] (worst cases about twice that when the machine is loaded)."""
 
 
 def solve(name: str, contact: ContactLike, resolution: int) -> MethodResult:

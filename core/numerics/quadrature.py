@@ -57,10 +57,10 @@ def solve_quad(contact: ContactLike, resolution: int) -> tuple:
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", IntegrationWarning)
-        t_imp = quad(t_of, start, end, points=points, limit=limit, epsabs=1e-15,
-                     epsrel=1e-14)[0]
+        t_imp = quad(t_of, start, end, points=points, limit=limit, epsabs=0.0,
+                     epsrel=2e-14)[0]
         p_imp = quad(lambda x: float(c.normal_force(x)), start, end, points=points[:1],
-                     limit=limit, epsabs=1e-15, epsrel=1e-14)[0]
+                     limit=limit, epsabs=0.0, epsrel=2e-14)[0]
     tau = np.unique(np.asarray(seen, dtype=float))
     return tau, np.asarray(c.tangential_force(tau), dtype=float), None, t_imp / p_imp
 
