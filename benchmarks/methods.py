@@ -162,6 +162,16 @@ def run_all(psis, tau0s, ladders) -> list[dict]:
     return rows
 
 
+def read_csv(path: Path) -> list[dict]:
+    """Rows written by ``write_csv`` (numbers back to int / float)."""
+    rows = []
+    with path.open() as fh:
+        for row in csv.DictReader(fh):
+            rows.append({k: (v if k == "method" else int(v) if k == "resolution"
+                             else float(v)) for k, v in row.items()})
+    return rows
+
+
 def write_csv(rows: list[dict], path: Path) -> None:
     with path.open("w", newline="") as fh:
         writer = csv.DictWriter(fh, fieldnames=FIELDS)
@@ -260,13 +270,13 @@ def chart(rows: list[dict], summ: dict, path: Path) -> None:
     from bokeh.models import ColumnDataSource, HoverTool, TabPanel, Tabs
     from bokeh.palettes import Category20
     from bokeh.plotting import figure
-    from bokeh.resources import CDN
+    from bokeh.resources import INLINE
 
     names = ["closed_form", *METHODS]
     colours = dict(zip(names, Category20[20], strict=False))
 
     def panel(title: str, data: dict[str, tuple[list, list, list]]):
-        fig = figure(title=title, x_axis_type="log", y_axis_type="log", width=900,
+        fig = figure(title=title, x_axis_type="log", y_axis_type="log", width=1100,
                      height=560, x_axis_label="wall time (s)",
                      y_axis_label="error: max(|T - T_closed| / T0, |impulse ratio error|)")
         for name in names:
@@ -276,8 +286,8 @@ def chart(rows: list[dict], summ: dict, path: Path) -> None:
             y = [max(v, 1e-17) for v in y]
             src = ColumnDataSource(dict(x=x, y=y, res=res, method=[name] * len(x)))
             if name == "closed_form":
-                fig.scatter("x", "y", source=src, size=14, marker="star",
-                            color="black", legend_label="closed form")
+                fig.scatter("x", "y", source=src, size=22, marker="star",
+                            color="black", line_color="white", legend_label="closed form")
             else:
                 fig.line("x", "y", source=src, color=colours[name], legend_label=name,
                          line_width=2)
@@ -286,8 +296,8 @@ def chart(rows: list[dict], summ: dict, path: Path) -> None:
         fig.add_tools(HoverTool(tooltips=[("method", "@method"), ("resolution", "@res"),
                                           ("time", "@x{0.000e}"), ("error", "@y{0.0e}")]))
         fig.legend.click_policy = "hide"
-        fig.legend.location = "bottom_left"
         fig.legend.label_text_font_size = "8pt"
+        fig.add_layout(fig.legend[0], "right")
         return TabPanel(child=fig, title=title)
 
     def collect(selected: list[dict]) -> dict:
@@ -307,7 +317,7 @@ def chart(rows: list[dict], summ: dict, path: Path) -> None:
             sel = [r for r in rows if r["psi"] == psi and r["tau0"] == tau0]
             if sel:
                 panels.append(panel(f"psi={psi:g}, tau0={tau0:.3g}", collect(sel)))
-    save(Tabs(tabs=panels), filename=str(path), resources=CDN,
+    save(Tabs(tabs=panels), filename=str(path), resources=INLINE,
          title="Speed vs accuracy of the numerical methods")
 
 
@@ -315,6 +325,8 @@ def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true",
                         help="2 x 2 cases, half ladders, output in results/quick/")
+    parser.add_argument("--replot", action="store_true",
+                        help="rebuild the chart and table from the existing CSV")
     args = parser.parse_args(argv)
     out = ROOT / "benchmarks" / "results"
     psis, tau0s, ladders = PSIS, TAU0S, LADDERS
@@ -322,7 +334,10 @@ def main(argv: list[str] | None = None) -> None:
         out = out / "quick"
         psis, tau0s, ladders = [1.0, 28.35], [np.pi / 6, -0.9], QUICK_LADDERS
     out.mkdir(parents=True, exist_ok=True)
-    rows = run_all(psis, tau0s, ladders)
+    if args.replot:
+        rows = read_csv(out / "speed_accuracy.csv")
+    else:
+        rows = run_all(psis, tau0s, ladders)
     summ = summary(rows)
     groups = {title: speed_ratios(rows, ms) for title, ms in RATIO_GROUPS.items()}
     groups |= {f"{title}, relative error (err_rel)": speed_ratios(rows, ms, "err_rel")
@@ -332,7 +347,8 @@ def main(argv: list[str] | None = None) -> None:
     groups["converging solvers (MDR, annulus), impulse ratio only, against the closed-form "
            f"impulse vectorised over 1000 psi ({np.median(list(amortised.values())) * 1e9:.0f}"
            " ns per case)"] = amortised_ratios
-    write_csv(rows, out / "speed_accuracy.csv")
+    if not args.replot:
+        write_csv(rows, out / "speed_accuracy.csv")
     (out / "methods_table.md").write_text(markdown(rows, summ, groups))
     chart(rows, summ, out / "speed_accuracy.html")
     for title, ratios in groups.items():

@@ -65,6 +65,16 @@ def run(psis: np.ndarray, tau0s: np.ndarray) -> list[dict]:
     return rows
 
 
+def read_csv(path: Path) -> list[dict]:
+    """Rows written by ``write_csv`` (numbers back to int / float)."""
+    rows = []
+    with path.open() as fh:
+        for row in csv.DictReader(fh):
+            rows.append({k: (v if k == "method" else int(v) if k == "resolution"
+                             else float(v)) for k, v in row.items()})
+    return rows
+
+
 def write_csv(rows: list[dict], path: Path) -> None:
     with path.open("w", newline="") as fh:
         writer = csv.DictWriter(fh, fieldnames=FIELDS)
@@ -88,7 +98,7 @@ def heat_maps(rows: list[dict], psis, tau0s, path: Path) -> None:
     )
     from bokeh.palettes import Viridis256
     from bokeh.plotting import figure
-    from bokeh.resources import CDN
+    from bokeh.resources import INLINE
 
     xs = [f"{p:.3g}" for p in psis]
     ys = [f"{t:.4g}" for t in tau0s]
@@ -104,18 +114,15 @@ def heat_maps(rows: list[dict], psis, tau0s, path: Path) -> None:
                 logerr=np.log10(np.maximum(err, FLOOR)), err=err,
             ))
             fig = figure(title=f"{name} (resolution {BUDGET[name]})", x_range=xs,
-                         y_range=ys, width=430, height=330, x_axis_label="psi",
+                         y_range=ys, width=470, height=330, x_axis_label="psi",
                          y_axis_label="tau0", toolbar_location=None)
             fig.rect("x", "y", width=1, height=1, source=src, line_color=None,
                      fill_color={"field": "logerr", "transform": mapper})
             fig.xaxis.major_label_orientation = 1.0
+            fig.add_layout(ColorBar(color_mapper=mapper, width=8, title="log10"), "right")
             fig.add_tools(HoverTool(tooltips=[("psi", "@x"), ("tau0", "@y"),
                                               (label, "@err{0.0e}")]))
             figs.append(fig)
-        bar_fig = figure(width=430, height=120, toolbar_location=None, title=label)
-        bar_fig.add_layout(ColorBar(color_mapper=mapper, orientation="horizontal",
-                                    title="log10 error"), "center")
-        figs.append(bar_fig)
         return gridplot(figs, ncols=3)
 
     intro = Div(text=(
@@ -128,7 +135,7 @@ def heat_maps(rows: list[dict], psis, tau0s, path: Path) -> None:
         TabPanel(child=grid("rel_err_impulse", "relative impulse error"),
                  title="relative impulse error"),
     ])
-    save(column(intro, tabs), filename=str(path), resources=CDN,
+    save(column(intro, tabs), filename=str(path), resources=INLINE,
          title="Stability map of the numerical methods")
 
 
@@ -136,6 +143,8 @@ def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true",
                         help="6 x 5 grid, output in results/quick/")
+    parser.add_argument("--replot", action="store_true",
+                        help="rebuild the heat maps from the existing CSV")
     args = parser.parse_args(argv)
     out = ROOT / "benchmarks" / "results"
     psis, tau0s = PSIS, TAU0S
@@ -144,8 +153,13 @@ def main(argv: list[str] | None = None) -> None:
         psis = np.array([0.3, 1.0, 1.01, 30.0, 1e3, 1e4])
         tau0s = np.array([-1.4, 0.0, 1.5, 1.565, 1.569])
     out.mkdir(parents=True, exist_ok=True)
-    rows = run(psis, tau0s)
-    write_csv(rows, out / "stability_map.csv")
+    if args.replot:
+        rows = read_csv(out / "stability_map.csv")
+        psis = np.array(sorted({r["psi"] for r in rows}))
+        tau0s = np.array(sorted({r["tau0"] for r in rows}))
+    else:
+        rows = run(psis, tau0s)
+        write_csv(rows, out / "stability_map.csv")
     heat_maps(rows, psis, tau0s, out / "stability_map.html")
     for name in BUDGET:
         errs = np.array([r["err"] for r in rows if r["method"] == name])
