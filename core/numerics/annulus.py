@@ -36,6 +36,8 @@ from core.numerics.result import ContactLike, check_resolution, contact_paramete
 NAME = "annulus"
 DESCRIPTION = "Annulus discretisation (Maw, Barber & Fawcett 1976): n rings, Coulomb per ring"
 MAX_SWEEPS = 60
+MAX_RINGS = 400
+"""Largest ring count: one dense solve per sweep and step costs O(n^3)."""
 STICK_TOL = 1e-9
 """Relative slack of the stick test |tau| <= mu p (psi = 1 rides the limit exactly)."""
 
@@ -135,7 +137,7 @@ def stick_radius(edges: NDArray[np.float64], stick: NDArray[np.bool_],
 def solve(contact: ContactLike, resolution: int) -> tuple:
     """``resolution`` rings and 4 * resolution time steps (at least 60) on
     ``loading.time_grid``. Returns (tau, T, b, impulse ratio)."""
-    n = check_resolution(resolution, maximum=2000)
+    n = check_resolution(resolution, maximum=MAX_RINGS)
     psi, tau0 = contact_parameters(contact)
     tau = time_grid(psi, tau0, max(4 * n, 60))
     check_resolution(n * tau.size, name="rings * time steps")
