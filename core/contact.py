@@ -128,10 +128,19 @@ class Contact:
         if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 2 <= n <= MAX_GRID:
             raise ValueError(f"n must be an integer in [2, {MAX_GRID}], got {n!r}")
         n = operator.index(n)
-        parts = [np.linspace(self.tau0, self.tau_end, n), [math.pi / 2]]
-        if self.psi > 1.0:
-            parts.append(np.linspace(math.pi / 2, self.tau1, max(n // 8, 8)))
-        return np.unique(np.concatenate(parts))
+        half = n // 2  # pi/2 is the midpoint: uniform spacing over the whole contact
+        if self.psi <= 1.0:
+            ends, counts = [self.tau0, math.pi / 2, self.tau_end], [half, n - half]
+        else:  # unloading split at tau1; partial stick gets n/8 extra points
+            share = round((self.tau1 - math.pi / 2) / (self.tau_end - math.pi / 2) * (n - half))
+            ends = [self.tau0, math.pi / 2, self.tau1, self.tau_end]
+            counts = [half, share + max(n // 8, 8), n - half - share]
+        pieces = [
+            np.linspace(a, b, max(k, 1), endpoint=False)
+            for a, b, k in zip(ends[:-1], ends[1:], counts, strict=True)
+            if b > a
+        ]
+        return np.concatenate([*pieces, [self.tau_end]])
 
     # ---- functions of time -----------------------------------------------------------
     def _clock(self, tau: ArrayLike) -> NDArray[np.float64]:

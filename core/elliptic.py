@@ -42,6 +42,18 @@ def _series_coefficients(n: int) -> NDArray[np.float64]:
 
 
 _COEFFS = _series_coefficients(_N_TERMS)
+_COEFFS_REVERSED = tuple(float(c) for c in _COEFFS[::-1])
+
+
+def _quartic_integral_scalar(m: float, mc: float) -> float:
+    """J(m) for one float m: the same two branches without array overhead."""
+    if m < SERIES_LIMIT:
+        acc = 0.0
+        for c in _COEFFS_REVERSED:
+            acc = acc * m + c
+        return acc
+    k, e = float(ellipkm1(mc)), float(ellipe(m))
+    return (2.0 * (2.0 * m - 1.0) * e + mc * (2.0 - 3.0 * m) * k) / (3.0 * m * m)
 
 
 def quartic_integral(m: ArrayLike, mc: ArrayLike | None = None) -> NDArray[np.float64]:
@@ -49,6 +61,9 @@ def quartic_integral(m: ArrayLike, mc: ArrayLike | None = None) -> NDArray[np.fl
 
     ``mc`` is 1 - m; pass it whenever m is close to 1 (it is computed as 1 - m otherwise).
     """
+    if np.ndim(m) == 0 and (mc is None or np.ndim(mc) == 0):
+        mf = float(m)
+        return np.asarray(_quartic_integral_scalar(mf, 1.0 - mf if mc is None else float(mc)))
     m = np.asarray(m, dtype=float)
     mc = 1.0 - m if mc is None else np.asarray(mc, dtype=float)
     m, mc = np.broadcast_arrays(m, mc)

@@ -128,6 +128,14 @@ def impulse_ratio(psi: ArrayLike, sin_half_e: float, cos_half_e: float) -> NDArr
     psi <= 1: psi. psi > 1: ((psi+1)/2)^(3/2) F(tau1)/F(tau0) = k J(k^2 m0) / J(m0) with
     m0 = sin^2(e/2) and J of ``core.elliptic`` (F = 12 m^2 J), free of cancellation.
     """
+    if np.ndim(psi) == 0:
+        p = float(psi)
+        if p <= 1.0:
+            return np.asarray(p)
+        k2 = 2.0 / (p + 1.0)
+        m0, mc0 = sin_half_e**2, cos_half_e**2
+        j1 = quartic_integral(k2 * m0, (p - 1.0) / (p + 1.0) + k2 * mc0)
+        return np.sqrt(k2) * j1 / quartic_integral(m0, mc0)
     psi = np.asarray(psi, dtype=float)
     out = psi.copy()
     big = psi > 1.0

@@ -27,14 +27,15 @@ def check_real(
     Raises ValueError naming the parameter, its value and the allowed range otherwise
     (nan, inf, booleans, strings and out-of-range numbers alike).
     """
-    allowed = _interval(lo, hi, lo_open, hi_open)
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        allowed = _interval(lo, hi, lo_open, hi_open)
         raise ValueError(f"{name} must be a real number in {allowed}, got {value!r}")
     v = float(value)
-    if not math.isfinite(v):
-        raise ValueError(f"{name} must be a finite number in {allowed}, got {v!r}")
     below = lo is not None and (v <= lo if lo_open else v < lo)
     above = hi is not None and (v >= hi if hi_open else v > hi)
-    if below or above:
+    if below or above or not math.isfinite(v):
+        allowed = _interval(lo, hi, lo_open, hi_open)
+        if not math.isfinite(v):
+            raise ValueError(f"{name} must be a finite number in {allowed}, got {v!r}")
         raise ValueError(f"{name} = {v!r} is outside the allowed range {allowed}")
     return v
