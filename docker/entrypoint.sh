@@ -2,6 +2,8 @@
 # Container entry point: serve the explorer with `panel serve`, configured from
 # the environment (see docs/docker.md):
 #   PORT             port to listen on inside the container (default 5006)
+#   ADDRESS          address to listen on (default 0.0.0.0; 127.0.0.1 when the
+#                    container shares the host's network, as docker/smoke.sh does)
 #   ALLOWED_ORIGINS  comma-separated host[:port] list allowed to open the Bokeh
 #                    websocket, e.g. "explorer.example.org,localhost:5006";
 #                    "*" (the default) allows any origin
@@ -16,6 +18,7 @@ if [ "$#" -gt 0 ] && [ "${1#-}" = "$1" ]; then
 fi
 
 PORT=${PORT:-5006}
+ADDRESS=${ADDRESS:-0.0.0.0}
 NUM_PROCS=${NUM_PROCS:-1}
 ALLOWED_ORIGINS=${ALLOWED_ORIGINS:-*}
 
@@ -34,11 +37,11 @@ done
 IFS=$old_ifs
 [ -n "$origin_args" ] || { echo "entrypoint: ALLOWED_ORIGINS is empty" >&2; exit 64; }
 
-echo "entrypoint: panel serve app/main.py on 0.0.0.0:$PORT, $NUM_PROCS process(es), websocket origins: $ALLOWED_ORIGINS" >&2
+echo "entrypoint: panel serve app/main.py on $ADDRESS:$PORT, $NUM_PROCS process(es), websocket origins: $ALLOWED_ORIGINS" >&2
 # $origin_args and $PANEL_ARGS are split on blanks on purpose (globbing is off).
 # shellcheck disable=SC2086
 exec panel serve app/main.py \
-    --address 0.0.0.0 --port "$PORT" \
+    --address "$ADDRESS" --port "$PORT" \
     --liveness --index main \
     --num-procs "$NUM_PROCS" \
     $origin_args \

@@ -1,0 +1,225 @@
+#!/usr/bin/env bash
+# Docker smoke test (`make docker-smoke`): build the image, run it, wait for
+# /liveness and the HEALTHCHECK, check the page, run the browser smoke tests
+# (`pytest -m smoke tests/app`) against the container, try NUM_PROCS=2, clean up.
+#
+# Works on a machine that cannot pull from any container registry: the base is
+# made locally by docker/build-base.sh (debootstrap) when absent, and a Docker
+# engine is started (vfs storage, no bridge, no iptables) when none answers.
+# Every address used is on the loopback interface.  Idempotent: reuses the
+# base image and the build cache, replaces a container left by an earlier run.
+#
+# Environment (all optional):
+#   BASE_IMAGE   base image passed as --build-arg BASE (default zharii-base:trixie,
+#                built here if absent); BASE_IMAGE=python:3.12-slim on a normal machine
+#   IMAGE        tag of the image built (default zharii-explorer:latest)
+#   SMOKE_PORT   host port (default 5006, or a free one if 5006 is taken)
+#   LIVENESS_TIMEOUT  seconds to wait for /liveness (default 120)
+#   SKIP_BUILD=1      test the existing IMAGE without building
+#   SKIP_BROWSER=1    skip the Playwright smoke tests (HTTP checks only)
+#   SKIP_MULTIPROC=1  skip the NUM_PROCS=2 run
+#   KEEP_DOCKERD=1    leave a dockerd started by this script running
+set -euo pipefail
+
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$ROOT"
+
+DOCKER=${DOCKER:-docker}
+BASE_IMAGE=${BASE_IMAGE:-zharii-base:trixie}
+IMAGE=${IMAGE:-zharii-explorer:latest}
+NAME=zharii-explorer-smoke
+LIVENESS_TIMEOUT=${LIVENESS_TIMEOUT:-120}
+WORKDIR=${WORKDIR:-/var/tmp/zharii-docker}
+VENV=${VENV:-$ROOT/.venv}
+export WORKDIR DOCKER
+
+log() { printf '[smoke] %s\n' "$*" >&2; }
+die() { printf '[smoke] FAIL: %s\n' "$*" >&2; exit 1; }
+now() { date +%s.%N; }
+since() { awk -v a="$1" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }'; }
+
+mkdir -p "$WORKDIR"
+STARTED_DOCKERD=
+CONTAINERS=()
+cleanup() {
+    local rc=$?
+    for c in "${CONTAINERS[@]}"; do
+        log "removing container $c"
+        "$DOCKER" rm -f "$c" >/dev/null 2>&1 || true
+    done
+    if [ -n "$STARTED_DOCKERD" ] && [ -z "${KEEP_DOCKERD:-}" ]; then
+        log "stopping the dockerd started here (pid $STARTED_DOCKERD)"
+        kill "$STARTED_DOCKERD" 2>/dev/null || true
+        for _ in $(seq 50); do kill -0 "$STARTED_DOCKERD" 2>/dev/null || break; sleep 0.2; done
+    fi
+    [ "$rc" = 0 ] && log "PASS" || log "FAILED (exit $rc)"
+}
+trap cleanup EXIT
+trap 'exit 130' INT TERM
+
+# ---- 1. a Docker engine ------------------------------------------------------
+if ! "$DOCKER" info >/dev/null 2>&1; then
+    [ "$(id -u)" = 0 ] || die "no Docker engine answers and starting one needs root"
+    if ! command -v dockerd >/dev/null 2>&1; then
+        log "installing Debian's docker.io (apt-get)"
+        apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive apt-get install -y -qq docker.io >/dev/null
+    fi
+    log "starting dockerd --storage-driver vfs --iptables=false --bridge=none (log: $WORKDIR/dockerd.log)"
+    dockerd --storage-driver vfs --iptables=false --bridge=none >"$WORKDIR/dockerd.log" 2>&1 &
+    STARTED_DOCKERD=$!
+    for _ in $(seq 60); do "$DOCKER" info >/dev/null 2>&1 && break; sleep 0.5; done
+    "$DOCKER" info >/dev/null 2>&1 || { tail -n 20 "$WORKDIR/dockerd.log" >&2; die "dockerd did not come up in 30 s"; }
+fi
+log "docker engine: $("$DOCKER" version -f '{{.Server.Version}}'), storage $("$DOCKER" info -f '{{.Driver}}')"
+
+# ---- 2. base image and build -------------------------------------------------
+if [ -z "${SKIP_BUILD:-}" ]; then
+    if ! "$DOCKER" image inspect "$BASE_IMAGE" >/dev/null 2>&1; then
+        case $BASE_IMAGE in
+            zharii-base:*) log "base image $BASE_IMAGE absent: building it (docker/build-base.sh)"
+                           bash docker/build-base.sh "$BASE_IMAGE" ;;
+            *) log "base image $BASE_IMAGE absent: docker build will pull it" ;;
+        esac
+    else
+        log "base image $BASE_IMAGE present"
+    fi
+    log "building $IMAGE: DOCKER_BUILDKIT=0 docker build --network host --build-arg BASE=$BASE_IMAGE (log: $WORKDIR/build.log)"
+    t=$(now)
+    DOCKER_BUILDKIT=0 "$DOCKER" build --network host --build-arg "BASE=$BASE_IMAGE" -t "$IMAGE" . \
+        >"$WORKDIR/build.log" 2>&1 || { tail -n 30 "$WORKDIR/build.log" >&2; die "docker build failed; see $WORKDIR/build.log"; }
+    BUILD_S=$(since "$t")
+    log "built in $BUILD_S s ($(grep -c -- '---> Using cache' "$WORKDIR/build.log" || true) cached steps)"
+    # Dangling images left by earlier builds of the same tag (not the build cache).
+    "$DOCKER" image prune -f >/dev/null 2>&1 || true
+fi
+"$DOCKER" image inspect "$IMAGE" >/dev/null 2>&1 || die "image $IMAGE does not exist"
+SIZE_MB=$("$DOCKER" image inspect -f '{{.Size}}' "$IMAGE" | awk '{ printf "%.0f", $1 / 1e6 }')
+log "image $IMAGE: $SIZE_MB MB, user $("$DOCKER" image inspect -f '{{.Config.User}}' "$IMAGE")"
+
+# ---- 3. run it -----------------------------------------------------------------
+free_port() {
+    python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])'
+}
+port_busy() {
+    python3 -c 'import socket, sys; s = socket.socket(); sys.exit(s.connect_ex(("127.0.0.1", int(sys.argv[1]))) != 0)' "$1"
+}
+PORT=${SMOKE_PORT:-5006}
+if port_busy "$PORT"; then
+    [ -z "${SMOKE_PORT:-}" ] || die "port $PORT on 127.0.0.1 is already in use"
+    PORT=$(free_port)
+    log "port 5006 is in use here; using $PORT"
+fi
+
+# Without a Docker bridge (dockerd --bridge=none) the container shares the
+# host's network and listens on 127.0.0.1 only; with one, -p publishes the port
+# on 127.0.0.1 only.  Either way the server is reached at 127.0.0.1:$PORT.
+if "$DOCKER" network inspect bridge >/dev/null 2>&1; then
+    NET_MODE=publish
+else
+    NET_MODE=host
+fi
+
+# start_container NAME PORT [docker run options...]
+start_container() {
+    local name=$1 port=$2; shift 2
+    "$DOCKER" rm -f "$name" >/dev/null 2>&1 || true
+    CONTAINERS+=("$name")
+    local net=()
+    if [ "$NET_MODE" = host ]; then
+        net=(--network host -e ADDRESS=127.0.0.1 -e "PORT=$port")
+    else
+        net=(-p "127.0.0.1:$port:5006")
+    fi
+    log "docker run $name: ${net[*]} $*"
+    "$DOCKER" run -d --name "$name" "${net[@]}" \
+        -e "ALLOWED_ORIGINS=127.0.0.1:$port,localhost:$port" \
+        --health-interval 2s --health-start-period 60s \
+        "$@" "$IMAGE" >/dev/null
+}
+
+# wait_liveness NAME PORT -> prints seconds
+wait_liveness() {
+    local name=$1 port=$2 t deadline
+    t=$(now)
+    deadline=$(( $(date +%s) + LIVENESS_TIMEOUT ))
+    until curl -fsS --max-time 2 "http://127.0.0.1:$port/liveness" 2>/dev/null | grep -q true; do
+        if [ "$("$DOCKER" inspect -f '{{.State.Running}}' "$name" 2>/dev/null)" != true ]; then
+            "$DOCKER" logs "$name" 2>&1 | tail -n 30 >&2
+            die "container $name exited before /liveness answered"
+        fi
+        if [ "$(date +%s)" -ge "$deadline" ]; then
+            "$DOCKER" logs "$name" 2>&1 | tail -n 30 >&2
+            die "http://127.0.0.1:$port/liveness did not answer within $LIVENESS_TIMEOUT s"
+        fi
+        sleep 0.25
+    done
+    since "$t"
+}
+
+# check_page PORT PATH
+check_page() {
+    local url="http://127.0.0.1:$1$2" body code
+    body="$WORKDIR/page.html"
+    code=$(curl -sS --max-time 60 -o "$body" -w '%{http_code}' "$url") || die "GET $url failed"
+    [ "$code" = 200 ] || die "GET $url answered HTTP $code"
+    grep -qi '<script[^>]*bokeh' "$body" || die "GET $url: no Bokeh script in the page"
+    grep -q 'Bokeh.embed' "$body" || die "GET $url: the page does not embed a Bokeh document"
+    log "GET $url: HTTP 200, $(wc -c <"$body") bytes, Bokeh scripts present"
+}
+
+t_start=$(now)
+start_container "$NAME" "$PORT"
+LIVE_S=$(wait_liveness "$NAME" "$PORT")
+log "/liveness answered $LIVE_S s after docker run (container start included)"
+
+check_page "$PORT" /main
+check_page "$PORT" /
+
+# The image's own HEALTHCHECK command (run every 2 s here instead of 30 s).
+deadline=$(( $(date +%s) + 60 ))
+until [ "$("$DOCKER" inspect -f '{{.State.Health.Status}}' "$NAME")" = healthy ]; do
+    [ "$(date +%s)" -lt "$deadline" ] || die "container never became healthy: $("$DOCKER" inspect -f '{{json .State.Health}}' "$NAME")"
+    sleep 1
+done
+log "HEALTHCHECK: healthy"
+uid=$("$DOCKER" exec "$NAME" id -u)
+[ "$uid" != 0 ] || die "the server runs as root"
+log "server runs as uid $uid"
+
+# ---- 4. browser smoke tests --------------------------------------------------
+if [ -z "${SKIP_BROWSER:-}" ]; then
+    if [ ! -x "$VENV/bin/pytest" ]; then
+        log "no $VENV/bin/pytest: make venv"
+        make -s venv
+    fi
+    command -v chromium >/dev/null 2>&1 || { log "no chromium: make browser"; make -s browser; }
+    log "EXPLORER_URL=http://127.0.0.1:$PORT/main $VENV/bin/pytest -m smoke tests/app"
+    set +e
+    EXPLORER_URL="http://127.0.0.1:$PORT/main" "$VENV/bin/pytest" -m smoke -p no:cacheprovider tests/app
+    rc=$?
+    set -e
+    case $rc in
+        0) log "browser smoke tests passed" ;;
+        5) die "no smoke test was collected in tests/app (pytest -m smoke)" ;;
+        *) "$DOCKER" logs "$NAME" 2>&1 | tail -n 30 >&2; die "browser smoke tests failed (pytest exit $rc)" ;;
+    esac
+else
+    log "SKIP_BROWSER set: browser smoke tests skipped"
+fi
+"$DOCKER" rm -f "$NAME" >/dev/null
+
+# ---- 5. several server processes -----------------------------------------------
+if [ -z "${SKIP_MULTIPROC:-}" ]; then
+    PORT2=$(free_port)
+    start_container "$NAME-procs" "$PORT2" -e NUM_PROCS=2
+    LIVE2_S=$(wait_liveness "$NAME-procs" "$PORT2")
+    check_page "$PORT2" /main
+    check_page "$PORT2" /main
+    n=$("$DOCKER" logs "$NAME-procs" 2>&1 | grep -c 'Starting Bokeh server with process id') || true
+    [ "${n:-0}" -ge 2 ] || { "$DOCKER" logs "$NAME-procs" 2>&1 | tail -n 20 >&2; die "NUM_PROCS=2 did not start 2 server processes (log shows $n)"; }
+    log "NUM_PROCS=2: $n server processes, /liveness after $LIVE2_S s"
+    "$DOCKER" rm -f "$NAME-procs" >/dev/null
+fi
+
+log "summary: image $IMAGE ${SIZE_MB} MB; build ${BUILD_S:-skipped} s; /liveness ${LIVE_S} s after docker run; total $(since "$t_start") s after docker run"
