@@ -22,6 +22,7 @@ from panel.io import hold
 from app.formulas import formulas
 from app.methods import MethodsScene
 from app.scenes import (
+    PHASE_COLORS,
     DiscScene,
     ForceScene,
     ImpulseScene,
@@ -29,7 +30,6 @@ from app.scenes import (
     RadiiScene,
     Scene,
     TractionScene,
-    phase_name,
 )
 from app.state import PRESETS, ExplorerState, parse_query
 from core import Contact
@@ -37,6 +37,12 @@ from core import Contact
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
 FRAME_MS = 20  # animation period on the server (50 frames/s requested)
 MAX_FRAME_DT = 0.1  # a late frame never jumps more than this (s)
+SLOW_UPDATE_S = 0.5  # while playing, scrubber and caption follow at most this often (s)
+
+#: Colour key of the contact disc (the figure has no legend, see DiscScene).
+DISC_KEY = " ".join(
+    f'<span style="color:{PHASE_COLORS[p]}; font-size: 1.3em">●</span> {name}'
+    for p, name in ((1, "stick"), (2, "slip"), (4, "counter-slip")))
 
 #: Large type for a projector; a little smaller on a phone.
 CSS = """
@@ -61,6 +67,7 @@ class Explorer:
         self._last_tick = 0.0
         self._syncing = False
         self._shown_phase = -1
+        self._last_slow = 0.0
 
         self.traction = TractionScene()
         self.disc = DiscScene()
@@ -104,10 +111,10 @@ class Explorer:
             preset = PRESETS.get(self.state.preset)
             family = preset.family if preset else ()
             self.force.set_family([Contact(p, c.tau0, mu=c.mu, nu=c.nu) for p in family])
-            self.tau_slider.param.update(start=c.tau0, end=c.tau_end)
+            self.tau_slider.param.update(start=c.tau0, end=c.tau_end, value=tau)
             self.readout.object = self._readout_text(c)
             self._show_formulas(c, tau)
-            self.now.object = self._now_text(c, tau)
+            self.traction.caption.text = self._now_text(c, tau)
             self.methods.update_contact(c)
             self.downloads_filename()
         self._write_url()
@@ -152,14 +159,24 @@ class Explorer:
             self._write_url()
 
     def update_tau(self) -> None:
-        """Refresh what depends on tau only: one animation frame."""
+        """Refresh what depends on tau only: one animation frame.
+
+        While playing, the scrubber and the caption (each change makes the browser lay
+        the page or the plot out again) follow at most every SLOW_UPDATE_S; the plots
+        follow every frame.
+        """
         c, tau = self.contact, self.state.tau
+        now = time.monotonic()
+        slow = not self.state.playing or now - self._last_slow >= SLOW_UPDATE_S
         with hold():
             for scene in self.scenes:
                 scene.update_tau(c, tau)
             self.methods.update_tau(c, tau)
-            self.now.object = self._now_text(c, tau)
             self._show_formulas(c, tau)
+            if slow:
+                self._last_slow = now
+                self.traction.caption.text = self._now_text(c, tau)
+                self.tau_slider.value = tau
 
     def _show_formulas(self, c: Contact, tau: float) -> None:
         phase = int(np.asarray(c.phase(tau)).reshape(-1)[0])
@@ -211,6 +228,7 @@ class Explorer:
         elif not event.new:
             if self._callback is not None and self._callback.running:
                 self._callback.stop()
+            self.update_tau()  # the text and scrubber catch up
             self._write_url()
 
     # ------------------------------------------------------------------- view
@@ -229,9 +247,12 @@ class Explorer:
         self.nu_slider = pn.widgets.EditableFloatSlider.from_param(
             s.param.nu, label="ν Poisson ratio", start=0.0, end=0.49, step=0.01,
             fixed_start=0.0, fixed_end=0.499, format="0[.]000")
-        self.tau_slider = pn.widgets.EditableFloatSlider.from_param(
-            s.param.tau, label="τ = ωt (rad): time", start=self.contact.tau0,
+        # not bound with from_param: while playing it is refreshed only every
+        # SLOW_UPDATE_S, to spare the browser a widget re-render per frame
+        self.tau_slider = pn.widgets.EditableFloatSlider(
+            label="τ = ωt (rad): time", value=s.tau, start=self.contact.tau0,
             end=self.contact.tau_end, step=0.002, format="0[.]0000")
+        self.tau_slider.param.watch(lambda e: setattr(s, "tau", e.new), "value")
         self.play_button = pn.widgets.Button(label="▶ Play", color="success", width=110)
         self.play_button.on_click(lambda _: setattr(s, "playing", not s.playing))
         self.step_button = pn.widgets.Button(label="Step", width=100)
@@ -266,7 +287,6 @@ class Explorer:
         self.show_messages(self.messages)
         self.readout = pn.pane.Markdown("", sizing_mode="stretch_width",
                                         css_classes=["pn-readout"])
-        self.now = pn.pane.Markdown("", sizing_mode="stretch_width")
         self.formulas = pn.pane.Markdown("", sizing_mode="stretch_width")
         self.downloads = {
             key: pn.widgets.FileDownload(callback=lambda key=key: self.csv_file(key),
@@ -316,13 +336,12 @@ class Explorer:
         t = np.array([tau])
         T, a, b = (float(f(t)[0]) for f in (c.tangential_force, c.contact_radius,
                                              c.stick_radius))
-        text = (f"**τ = {tau:.4f} rad: {phase_name(c, tau)}**  \n"
-                f"T/T₀ = {T:.4f}, a/a* = {a:.4f}, b/a* = {b:.4f}")
+        text = f"τ = {tau:.4f} rad  T/T₀ = {T:+.4f}\na/a* = {a:.4f}  b/a* = {b:.4f}"
         sc = c.scales
         if sc is not None:
             t = tau * sc.period / (2 * math.pi)
-            text += (f"  \nt = {t * 1e6:.4g} µs, T = {T * sc.T0:.4g} N, "
-                     f"a = {a * sc.a_star * 1e6:.4g} µm, b = {b * sc.a_star * 1e6:.4g} µm")
+            text += (f"\nt = {t * 1e6:.4g} µs  T = {T * sc.T0:.4g} N\n"
+                     f"a = {a * sc.a_star * 1e6:.4g} µm  b = {b * sc.a_star * 1e6:.4g} µm")
         return text
 
     # ---------------------------------------------------------------- outputs
@@ -395,8 +414,9 @@ class Explorer:
             self.message,
             pn.FlexBox(
                 card(pn.pane.Bokeh(self.traction.figure, sizing_mode="stretch_width"),
-                     self.now, title="Traction profile (Fig. 6)", flex="3 1 560px"),
-                card(pn.pane.Bokeh(self.disc.figure), title="Contact disc", flex="0 0 380px"),
+                     title="Traction profile (Fig. 6)", flex="3 1 560px"),
+                card(pn.pane.Bokeh(self.disc.figure), pn.pane.HTML(DISC_KEY),
+                     title="Contact disc", flex="0 0 380px"),
                 card(self.formulas, title="Formulas of the current phase", flex="2 1 480px"),
                 card(self.readout, title="Derived quantities", flex="1 1 380px"),
                 card(pn.pane.Bokeh(self.force.figure, sizing_mode="stretch_width"),
@@ -413,7 +433,8 @@ class Explorer:
         ]
         template = pn.template.BootstrapTemplate(
             title="Zharii (1996): two elastic spheres in intermittent frictional contact",
-            sidebar=sidebar, main=main, sidebar_width=380, header_background="#0072B2")
+            sidebar=sidebar, main=main, sidebar_width=380, header_background="#0072B2",
+            busy_indicator=None)  # its per-message restyling slows every frame
         template.config.raw_css.append(CSS)
         return template
 

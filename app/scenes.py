@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from bokeh.models import ColumnDataSource, DataRange1d, Range1d, Span
+from bokeh.models import ColumnDataSource, Label, Range1d, Span
 from bokeh.plotting import figure
 
 from core import PHASE_NAMES, Contact, Phase, impulse_ratio
@@ -37,6 +37,9 @@ PHASE_COLORS: dict[int, str] = {
 }
 STICK_COLOR = PHASE_COLORS[1]
 LINE_COLORS = ("#000000", "#D55E00", "#0072B2", "#CC79A7", "#009E73")
+#: Bokeh level of everything that changes on an animation frame: the browser then
+#: repaints only the plot's overlay layer, not its axes, grid and legend.
+FRAME_LEVEL = "overlay"
 
 
 def phase_name(c: Contact, tau: float) -> str:
@@ -58,7 +61,22 @@ def _style(fig) -> None:
         fig.legend.click_policy = "hide"
 
 
+def fit_range(rng: Range1d, *columns, pad: float = 0.06) -> None:
+    """Set a fixed range around the finite values of `columns`.
+
+    Ranges are explicit (not auto-ranged) so that moving a marker never makes the
+    browser lay the plot out again: only the data of a frame changes.
+    """
+    values = np.concatenate([np.ravel(np.asarray(c, float)) for c in columns])
+    values = values[np.isfinite(values)]
+    lo, hi = (float(values.min()), float(values.max())) if values.size else (0.0, 1.0)
+    margin = pad * (hi - lo) if hi > lo else 0.5
+    rng.start, rng.end = lo - margin, hi + margin
+
+
 def _figure(title: str, x_label: str, y_label: str, **kwargs):
+    kwargs.setdefault("x_range", Range1d(0, 1))
+    kwargs.setdefault("y_range", Range1d(0, 1))
     kwargs.setdefault("sizing_mode", "stretch_width")
     kwargs.setdefault("height", 340)
     kwargs.setdefault("min_width", 300)
@@ -95,14 +113,21 @@ class TractionScene(Scene):
                                           "stick_hi")})
         fig = _figure("Traction", "r / a*", "traction  τᵤ / (μ p*)")
         fig.varea("r", "stick_lo", "stick_hi", source=self.source, fill_color=STICK_COLOR,
-                  fill_alpha=0.25, legend_label="stick zone")
+                  fill_alpha=0.25, legend_label="stick zone", level=FRAME_LEVEL)
         fig.line("r", "upper", source=self.source, line_dash="dashed", color="grey",
-                 line_width=2, legend_label="±μ p")
+                 line_width=2, legend_label="±μ p", level=FRAME_LEVEL)
         fig.line("r", "lower", source=self.source, line_dash="dashed", color="grey",
-                 line_width=2)
+                 line_width=2, level=FRAME_LEVEL)
         self.line = fig.line("r", "traction", source=self.source, color="black", line_width=3,
-                             legend_label="τᵤ")
-        fig.legend.location = "bottom_left"
+                             legend_label="τᵤ", level=FRAME_LEVEL)
+        fig.legend.location = "top_left"
+        # values at the current tau, drawn on the canvas: a text pane beside the plot
+        # would make the browser lay out the whole page again on every frame
+        self.caption = Label(x=0, y=0, text="", text_align="right", text_baseline="top",
+                             text_font_size="13pt", background_fill_color="white",
+                             background_fill_alpha=0.8, name="traction_caption",
+                             level=FRAME_LEVEL)
+        fig.add_layout(self.caption)
         _style(fig)
         self.figure = fig
 
@@ -111,7 +136,8 @@ class TractionScene(Scene):
         p_max = float(c.pressure(0.0, math.pi / 2))
         self.r_grid = np.linspace(-1.05 * a_max, 1.05 * a_max, PROFILE_POINTS)
         self.figure.x_range.start, self.figure.x_range.end = -1.1 * a_max, 1.1 * a_max
-        self.figure.y_range.start, self.figure.y_range.end = -1.15 * p_max, 1.15 * p_max
+        self.figure.y_range.start, self.figure.y_range.end = -1.6 * p_max, 1.6 * p_max
+        self.caption.x, self.caption.y = 1.08 * a_max, 1.55 * p_max
 
     def update_tau(self, c: Contact, tau: float) -> None:
         a = float(c.contact_radius(tau))
@@ -129,7 +155,8 @@ class TractionScene(Scene):
             "stick_hi": np.where(stick, p, 0.0),
         }
         self.line.glyph.line_color = PHASE_COLORS[phase] if phase != 1 else "black"
-        self.figure.title.text = f"Traction at τ = {tau:.4f} rad: {PHASE_NAMES[phase]}"
+        self.figure.title.text_color = PHASE_COLORS[phase]
+        self.figure.title.text = f"Traction: {PHASE_NAMES[phase]}"  # changes once a phase
 
 
 class DiscScene(Scene):
@@ -141,18 +168,15 @@ class DiscScene(Scene):
         super().__init__({"x": [0.0, 0.0], "y": [0.0, 0.0], "inner": [0.0, 0.0],
                           "outer": [0.0, 0.0], "color": [STICK_COLOR, STICK_COLOR],
                           "label": ["stick", "slip"]})
+        # no legend: a legend built from the data would repaint the whole plot per frame
         fig = _figure("Contact disc (top view)", "x / a*", "y / a*", match_aspect=True,
-                      sizing_mode="fixed", width=350, height=400)
+                      sizing_mode="fixed", width=350, height=350)
         self.envelope = fig.circle(0, 0, radius=1.0, fill_alpha=0, line_dash="dotted",
                                    line_color="grey", line_width=2)
         fig.annulus("x", "y", inner_radius="inner", outer_radius="outer", source=self.source,
-                    fill_color="color", line_color="black", line_width=1,
-                    legend_field="label")
+                    fill_color="color", line_color="black", line_width=1, level=FRAME_LEVEL)
         fig.x_range.start, fig.x_range.end = -1.15, 1.15
         fig.y_range.start, fig.y_range.end = -1.15, 1.15
-        legend = fig.legend[0]
-        legend.orientation = "horizontal"
-        fig.add_layout(legend, "below")
         _style(fig)
         self.figure = fig
 
@@ -192,9 +216,10 @@ class CurveScene(Scene):
         for col, label, color, dash in self.curves:
             fig.line("tau", col, source=self.source, color=color, line_width=3, line_dash=dash,
                      legend_label=label)
-        fig.scatter("x", "y", source=self.marker, size=13, color="color", line_color="black")
+        fig.scatter("x", "y", source=self.marker, size=13, color="color", line_color="black",
+                    level=FRAME_LEVEL)
         self.span = Span(location=0.0, dimension="height", line_color="#666666", line_width=2,
-                         line_dash="dotted")
+                         line_dash="dotted", level=FRAME_LEVEL)
         fig.add_layout(self.span)
         _style(fig)
         self.figure = fig
@@ -205,7 +230,10 @@ class CurveScene(Scene):
 
     def update_contact(self, c: Contact) -> None:
         tau = c.tau_grid(CURVE_POINTS)
-        self.source.data = {"tau": tau, **self.columns(c, tau)}
+        columns = self.columns(c, tau)
+        self.source.data = {"tau": tau, **columns}
+        fit_range(self.figure.x_range, tau, pad=0.02)
+        fit_range(self.figure.y_range, *columns.values())
 
     def update_tau(self, c: Contact, tau: float) -> None:
         values = self.columns(c, np.array([tau]))
@@ -316,7 +344,7 @@ class ImpulseScene(Scene):
         self.figure = self.linear_figure
 
     def _make(self, axis: str):
-        x_range = Range1d(*self.LOG_RANGE) if axis == "log" else DataRange1d(start=0.0)
+        x_range = Range1d(*self.LOG_RANGE) if axis == "log" else Range1d(0.0, self.LINEAR_MAX)
         fig = _figure("Tangential impulse T_imp / (μ P_imp)", "ψ", "T_imp / (μ P_imp)",
                       x_axis_type=axis, x_range=x_range)
         fig.line("psi", "ratio", source=self.source, color="black", line_width=3)
@@ -343,8 +371,12 @@ class ImpulseScene(Scene):
 
     def update_contact(self, c: Contact) -> None:
         psi = self.psi_grid(c.psi)
+        ratio = np.asarray(impulse_ratio(psi, c.tau0), float)
+        self.source.data = {"psi": psi, "ratio": ratio}
+        fig = self.figure
         if self.log:
-            self.log_figure.x_range.start = min(self.LOG_RANGE[0], psi[0])
-            self.log_figure.x_range.end = max(self.LOG_RANGE[1], psi[-1])
-        self.source.data = {"psi": psi, "ratio": np.asarray(impulse_ratio(psi, c.tau0), float)}
+            fig.x_range.start, fig.x_range.end = psi[0], psi[-1]
+        else:
+            fig.x_range.start, fig.x_range.end = 0.0, psi[-1]
+        fig.y_range.start, fig.y_range.end = 0.0, 1.05 * max(float(ratio.max()), 1e-9)
         self.marker.data = {"psi": [c.psi], "ratio": [c.impulse_ratio]}

@@ -309,7 +309,7 @@ def test_physical_inputs_give_si_scales(ex: Explorer) -> None:
     assert f"{c.scales.T0:.4g} N" in ex.readout.object
     table = read_csv(ex.csv_text("curves"))
     np.testing.assert_allclose(table["T_N"], table["T"] * c.scales.T0, rtol=1e-9)
-    assert " N, a = " in ex.now.object
+    assert " N\na = " in ex.traction.caption.text
 
 
 def test_invalid_physical_inputs_show_a_message(ex: Explorer) -> None:

@@ -1,0 +1,126 @@
+"""Explorer latency in a real browser (Debian's Chromium through Playwright).
+
+Measures
+  (a) slider move -> all plots updated: a psi slider step by keyboard until every named
+      data source has changed and the browser has painted (two animation frames later);
+      median and p90 over N moves;
+  (b) animation frame rate: distinct tau-marker positions painted per second while
+      playing.
+Serves the app itself with `panel serve` unless EXPLORER_URL is set.
+
+    .venv/bin/python benchmarks/app_latency.py [--moves 30] [--seconds 5]
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT), str(ROOT / "tests" / "app")]
+
+from explorer_browser import (  # noqa: E402
+    CHROMIUM_ARGS,
+    chromium_path,
+    explorer_server,
+    open_explorer,
+)
+
+SOURCES = ["traction", "disc", "force", "impulse", "radii", "motion"]
+
+#: Arms a one-shot measurement: t0 at the next keydown, done when every source changed
+#: and two animation frames (a paint) have passed.
+JS_ARM = """(names) => {
+  const doc = window.Bokeh.documents[0];
+  window.__result = new Promise((resolve) => {
+    let t0 = null;
+    const pending = new Set(names);
+    const slots = [];
+    const finish = () => {
+      slots.forEach(([m, f]) => m.change.disconnect(f));
+      requestAnimationFrame(() => requestAnimationFrame(() => resolve(performance.now() - t0)));
+    };
+    for (const n of names) {
+      const m = doc.get_model_by_name(n);
+      const f = () => { pending.delete(n); if (t0 !== null && pending.size === 0) finish(); };
+      m.change.connect(f);
+      slots.push([m, f]);
+    }
+    document.addEventListener("keydown", () => { t0 = performance.now(); },
+                              {capture: true, once: true});
+    setTimeout(() => resolve(NaN), 15000);
+  });
+}"""
+
+#: Counts distinct tau-marker positions painted during `ms` milliseconds.
+JS_FPS = """(ms) => new Promise((resolve) => {
+  const doc = window.Bokeh.documents[0];
+  const marker = doc.get_model_by_name("force_marker");
+  const x = () => { const d = marker.data; return (d instanceof Map ? d.get("x") : d.x)[0]; };
+  let last = x(), changes = 0, frames = 0;
+  const t0 = performance.now();
+  const tick = () => {
+    frames += 1;
+    const now = x();
+    if (now !== last) { changes += 1; last = now; }
+    if (performance.now() - t0 < ms) requestAnimationFrame(tick);
+    else resolve({changes, frames, seconds: (performance.now() - t0) / 1000});
+  };
+  requestAnimationFrame(tick);
+})"""
+
+
+def measure(url: str, moves: int, seconds: float) -> dict[str, float]:
+    """Run both measurements against the explorer at `url`."""
+    from playwright.sync_api import sync_playwright
+
+    path = chromium_path()
+    if path is None:
+        raise SystemExit("no /usr/bin/chromium (apt-get install chromium)")
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=path, args=CHROMIUM_ARGS)
+        page, _ = open_explorer(browser, url)
+        page.wait_for_timeout(2000)
+        handle = page.locator(".noUi-handle").first  # psi
+        handle.focus()
+        times = []
+        for i in range(moves + 2):
+            page.evaluate(JS_ARM, SOURCES)
+            page.keyboard.press("ArrowRight" if i % 2 == 0 else "ArrowLeft")
+            ms = page.evaluate("window.__result")
+            if i >= 2:  # the first moves warm up caches on both sides
+                times.append(ms)
+            page.wait_for_timeout(250)
+        page.get_by_role("button", name="▶ Play").click()
+        page.wait_for_timeout(1000)
+        fps = page.evaluate(JS_FPS, seconds * 1000)
+        page.get_by_role("button", name="⏸ Pause").click()
+        browser.close()
+    ok = sorted(t for t in times if t == t)
+    return {
+        "moves": len(ok),
+        "median_ms": statistics.median(ok),
+        "p90_ms": ok[max(0, round(0.9 * len(ok)) - 1)],
+        "fps": fps["changes"] / fps["seconds"],
+        "paint_fps": fps["frames"] / fps["seconds"],
+    }
+
+
+def main() -> None:
+    """Command line entry: print the figures."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--moves", type=int, default=30)
+    ap.add_argument("--seconds", type=float, default=5.0)
+    args = ap.parse_args()
+    with explorer_server() as url:
+        r = measure(url, args.moves, args.seconds)
+    print(f"slider move -> all plots updated ({r['moves']} moves): "
+          f"median {r['median_ms']:.0f} ms, p90 {r['p90_ms']:.0f} ms")
+    print(f"animation: {r['fps']:.1f} frames/s shown "
+          f"(browser painted {r['paint_fps']:.0f} frames/s)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,123 @@
+"""Helpers shared by the browser tests and the latency benchmark.
+
+Starts the explorer with `panel serve` (unless EXPLORER_URL names a running one) and
+launches Debian's Chromium through Playwright.  No browser is ever downloaded.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+from collections.abc import Iterator
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+CHROMIUM = "/usr/bin/chromium"
+CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu",
+                 "--disable-background-networking", "--disable-component-update",
+                 "--disable-sync", "--no-first-run"]
+
+
+def chromium_path() -> str | None:
+    """Path of Debian's Chromium, installing it with apt-get if missing and possible."""
+    if Path(CHROMIUM).exists():
+        return CHROMIUM
+    if shutil.which("apt-get") and os.geteuid() == 0:
+        with contextlib.suppress(subprocess.SubprocessError, OSError):
+            subprocess.run(["apt-get", "update", "-qq"], check=True, timeout=300,
+                           capture_output=True)
+            subprocess.run(["apt-get", "install", "-y", "-qq", "chromium"], check=True,
+                           timeout=900, capture_output=True)
+    return CHROMIUM if Path(CHROMIUM).exists() else None
+
+
+def free_port() -> int:
+    """A TCP port nobody listens on right now."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def wait_for_http(url: str, timeout: float = 60.0) -> None:
+    """Poll `url` until it answers 200; TimeoutError otherwise."""
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            with urllib.request.urlopen(url, timeout=5) as r:
+                if r.status == 200:
+                    return
+        except OSError:
+            pass
+        if time.monotonic() > deadline:
+            raise TimeoutError(f"{url} did not answer within {timeout} s")
+        time.sleep(0.3)
+
+
+@contextlib.contextmanager
+def explorer_server() -> Iterator[str]:
+    """Yield the explorer's URL: EXPLORER_URL if set, else a fresh `panel serve`."""
+    url = os.environ.get("EXPLORER_URL")
+    if url:
+        yield url.rstrip("/")
+        return
+    port = free_port()
+    (ROOT / "artifacts").mkdir(exist_ok=True)
+    log = open(ROOT / "artifacts" / f"panel-serve-{port}.log", "w")
+    cmd = [sys.executable, "-m", "panel", "serve", "app/main.py", "--port", str(port),
+           "--address", "127.0.0.1", f"--allow-websocket-origin=127.0.0.1:{port}",
+           "--liveness", "--index", "main"]
+    proc = subprocess.Popen(cmd, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT)
+    try:
+        wait_for_http(f"http://127.0.0.1:{port}/liveness")
+        yield f"http://127.0.0.1:{port}/main"
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+        log.close()
+
+
+#: JavaScript: defines window.__col(name, col), a data column of the named model.
+JS_HELPERS = """() => {
+  window.__col = (name, col) => {
+    const m = window.Bokeh.documents[0].get_model_by_name(name);
+    if (!m) return null;
+    const v = m.data instanceof Map ? m.data.get(col) : m.data[col];
+    return v == null ? null : Array.from(v);
+  };
+}"""
+
+#: JavaScript: true once the explorer's sources exist and hold data.
+JS_READY = """() => {
+  const d = window.Bokeh && window.Bokeh.documents && window.Bokeh.documents[0];
+  if (!d) return false;
+  const m = d.get_model_by_name('force');
+  if (!m) return false;
+  const t = m.data instanceof Map ? m.data.get('T') : m.data['T'];
+  return t && t.length > 0;
+}"""
+
+
+def column(page, name: str, col: str) -> list[float] | None:
+    """Read a data column of the named ColumnDataSource in the browser."""
+    return page.evaluate("([n, c]) => window.__col(n, c)", [name, col])
+
+
+def open_explorer(browser, url: str, width: int = 1600, height: int = 1400):
+    """A page showing the explorer at `url` (after its data arrived) and its console log."""
+    page = browser.new_page(viewport={"width": width, "height": height})
+    console: list[str] = []
+    page.on("console", lambda m: console.append(f"{m.type}: {m.text}"))
+    page.on("pageerror", lambda e: console.append(f"pageerror: {e}"))
+    page.goto(url)
+    page.wait_for_function(JS_READY, timeout=60_000)
+    page.evaluate(JS_HELPERS)
+    return page, console

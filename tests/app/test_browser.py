@@ -1,0 +1,163 @@
+"""The explorer in a real browser: Debian's Chromium driven by Playwright (sync API).
+
+Runs against EXPLORER_URL when set (e.g. a container), else against a `panel serve`
+started here.  `pytest -m smoke` selects the short subset.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from explorer_browser import (
+    CHROMIUM_ARGS,
+    ROOT,
+    chromium_path,
+    column,
+    explorer_server,
+    open_explorer,
+)
+
+from app.scenes import CURVE_POINTS
+from core import Contact
+
+pytestmark = pytest.mark.browser
+
+ARTIFACTS = ROOT / "artifacts"
+IGNORED_CONSOLE = ("could not set initial ranges",)  # Bokeh's note on hidden figures
+
+
+@pytest.fixture(scope="module")
+def url():
+    with explorer_server() as u:
+        yield u
+
+
+@pytest.fixture(scope="module")
+def browser():
+    path = chromium_path()
+    if path is None:
+        pytest.skip("/usr/bin/chromium is absent and could not be installed (apt-get)")
+    sync_api = pytest.importorskip("playwright.sync_api")
+    with sync_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=path, args=CHROMIUM_ARGS)
+        yield b
+        b.close()
+
+
+def errors(console: list[str]) -> list[str]:
+    return [m for m in console if m.startswith(("error", "pageerror"))
+            and not any(s in m for s in IGNORED_CONSOLE)]
+
+
+@pytest.mark.smoke
+def test_page_loads_without_console_errors_and_screenshot(browser, url) -> None:
+    page, console = open_explorer(browser, url)
+    page.wait_for_timeout(1500)  # let late errors (resources, KaTeX) surface
+    assert errors(console) == []
+    T = column(page, "force", "T")
+    assert len(T) > 300 and max(T) > 0 > min(T)
+    assert page.get_by_text("Partial stick (π/2 < τ < τ₁").is_visible()
+    ARTIFACTS.mkdir(exist_ok=True)
+    shot = ARTIFACTS / "explorer.png"
+    page.screenshot(path=str(shot), full_page=True)
+    assert shot.stat().st_size > 50_000
+    page.close()
+
+
+def settled(page, name: str, col: str, timeout_ms: int = 20_000) -> list[float]:
+    """The column once it has stopped changing for 0.5 s (the browser caught up)."""
+    last = column(page, name, col)
+    for _ in range(timeout_ms // 500):
+        page.wait_for_timeout(500)
+        now = column(page, name, col)
+        if now == last:
+            return now
+        last = now
+    raise AssertionError(f"{name}.{col} kept changing for {timeout_ms} ms")
+
+
+@pytest.mark.smoke
+def test_keyboard_slider_changes_plot_data(browser, url) -> None:
+    page, console = open_explorer(browser, url)
+    psi0 = column(page, "impulse_marker", "psi")[0]
+    handle = page.locator(".noUi-handle").first  # the psi slider
+    handle.focus()
+    for _ in range(3):
+        page.keyboard.press("ArrowRight")
+    page.wait_for_function("(v) => __col('impulse_marker', 'psi')[0] > v + 0.02", arg=psi0,
+                           timeout=20_000)
+    psi = settled(page, "impulse_marker", "psi")[0]
+    assert psi == pytest.approx(psi0 + 0.03, abs=0.011)  # three steps of 0.01
+    # the plotted curve is exactly what core computes for the new psi
+    tau, T = column(page, "force", "tau"), column(page, "force", "T")
+    c = Contact(psi, math.pi / 6)
+    np.testing.assert_allclose(tau, c.tau_grid(CURVE_POINTS), rtol=1e-15)
+    np.testing.assert_allclose(T, c.tangential_force(np.asarray(tau)), rtol=1e-12,
+                               atol=1e-15)
+    assert errors(console) == []
+    page.close()
+
+
+@pytest.mark.smoke
+def test_bad_query_shows_message_and_falls_back(browser, url) -> None:
+    page, console = open_explorer(browser, f"{url}?psi=banana&tau0=9")
+    assert page.get_by_text("psi='banana' is not a number").is_visible()
+    assert page.get_by_text("tau0=9 is out of range").is_visible()
+    assert column(page, "impulse_marker", "psi")[0] == pytest.approx(math.sqrt(2) + 1)
+    assert errors(console) == []
+    page.close()
+
+
+def test_good_query_sets_the_parameters(browser, url) -> None:
+    page, _ = open_explorer(browser, f"{url}?psi=6.46&tau0=0.2&tau=2.0")
+    assert column(page, "impulse_marker", "psi") == [6.46]
+    assert column(page, "force_marker", "x")[0] == 2.0
+    assert column(page, "force", "tau")[0] == pytest.approx(0.2)
+    page.close()
+
+
+def test_animation_advances(browser, url) -> None:
+    page, console = open_explorer(browser, url)
+    page.get_by_role("button", name="▶ Play").click()
+    seen = set()
+    for _ in range(30):
+        seen.add(column(page, "force_marker", "x")[0])
+        page.wait_for_timeout(50)
+    page.get_by_role("button", name="⏸ Pause").click()
+    assert len(seen) >= 5, seen
+    stopped = settled(page, "force_marker", "x")
+    page.wait_for_timeout(500)
+    assert column(page, "force_marker", "x") == stopped
+    assert errors(console) == []
+    page.close()
+
+
+def test_step_button_moves_tau(browser, url) -> None:
+    page, _ = open_explorer(browser, url)
+    tau = column(page, "force_marker", "x")[0]
+    page.get_by_role("button", name="Step").click()
+    page.wait_for_function("(v) => __col('force_marker', 'x')[0] > v", arg=tau)
+    page.close()
+
+
+def test_preset_loads(browser, url) -> None:
+    page, console = open_explorer(browser, url)
+    page.locator("select").first.select_option(label="Fig. 7b: T(tau), psi = 2.41, 6.46, 28.35")
+    page.wait_for_function("() => __col('impulse_marker', 'psi')[0] === 6.46", timeout=20_000)
+    page.wait_for_function("() => (__col('force_family', 'label') || []).length === 3")
+    assert column(page, "force_marker", "x")[0] == pytest.approx(math.pi / 2)
+    assert "preset=fig7b" in page.url
+    assert errors(console) == []
+    page.close()
+
+
+def test_phone_width_stacks_the_plots(browser, url) -> None:
+    page, console = open_explorer(browser, url, width=400, height=900)
+    boxes = [page.locator(".bk-Canvas").nth(i).bounding_box() for i in range(3)]
+    assert all(b is not None and b["x"] + b["width"] <= 420 for b in boxes), boxes
+    page.screenshot(path=str(Path(ARTIFACTS, "explorer-phone.png")), full_page=True)
+    assert errors(console) == []
+    page.close()
