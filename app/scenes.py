@@ -77,11 +77,11 @@ def fit_range(rng: Range1d, *columns, pad: float = 0.06) -> None:
 def _figure(title: str, x_label: str, y_label: str, **kwargs):
     kwargs.setdefault("x_range", Range1d(0, 1))
     kwargs.setdefault("y_range", Range1d(0, 1))
+    kwargs.setdefault("tools", TOOLS)
     kwargs.setdefault("sizing_mode", "stretch_width")
     kwargs.setdefault("height", 340)
     kwargs.setdefault("min_width", 300)
-    return figure(title=title, x_axis_label=x_label, y_axis_label=y_label, tools=TOOLS,
-                  **kwargs)
+    return figure(title=title, x_axis_label=x_label, y_axis_label=y_label, **kwargs)
 
 
 class Scene:

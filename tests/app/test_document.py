@@ -318,3 +318,43 @@ def test_invalid_physical_inputs_show_a_message(ex: Explorer) -> None:
     ex.state.h = 5 * ex.state.H  # h must be < H
     assert ex.message.visible and "not applied" in ex.message.object
     assert ex.state.psi == psi
+
+
+# ----------------------------------------------------------------- methods
+
+
+def test_methods_overlay_holds_what_numerics_computes(ex: Explorer) -> None:
+    numerics = pytest.importorskip("core.numerics")
+    ex.view()
+    ex.methods.choice.value = ["mdr"]  # runs synchronously outside a server
+    c = contact_of(ex)
+    res = numerics.solve("mdr", c, numerics.INTERACTIVE_RESOLUTION["mdr"])
+    d = ex.methods.source.data
+    assert d["label"] == ["mdr"]
+    eq(d["xs"][0], res.tau)
+    eq(d["ys"][0], res.T)
+    err = np.max(np.abs(res.T - c.tangential_force(res.tau)))
+    assert f"| mdr | {res.resolution} | {err:.2e} |" in ex.methods.table.object
+    eq(ex.methods.exact.data["T"], c.tangential_force(c.tau_grid(CURVE_POINTS)))
+
+
+def test_methods_rerun_live_after_a_change(ex: Explorer) -> None:
+    pytest.importorskip("core.numerics")
+    ex.methods.choice.value = ["lammps_mindlin"]
+    ex.methods.live.value = True
+    ex.psi_slider.value = 0.5
+    assert ex.methods.results[0].T.shape == ex.methods.source.data["ys"][0].shape
+    x = ex.methods.source.data["ys"][0]
+    ex.psi_slider.value = 5.0
+    assert not np.array_equal(ex.methods.source.data["ys"][0][:50], x[:50])
+
+
+def test_missing_numerics_shows_a_note(monkeypatch: pytest.MonkeyPatch) -> None:
+    import app.methods
+
+    monkeypatch.setattr(app.methods, "numerics", None)
+    ex = Explorer()
+    card = ex.methods.view()
+    assert "not available" in card.objects[0].object
+    ex.psi_slider.value = 3.0  # the rest still works
+    assert_sources_match_core(ex)
