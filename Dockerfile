@@ -8,42 +8,49 @@
 # with debootstrap (see docs/docker.md).  Runtime settings (PORT,
 # ALLOWED_ORIGINS, NUM_PROCS, PANEL_ARGS) are documented in docs/docker.md.
 #
-# Layer order is deliberate: the dependencies get their own cached layer, and
-# the runtime stage puts its metadata before the one large COPY (each step
-# after a large layer is slow on copy-based storage drivers such as vfs).
+# Stages are laid out for fast rebuilds on copy-based storage drivers (vfs):
+# the dependencies form one cached layer that a code change does not touch,
+# the project is pip-installed in a separate small stage, and the runtime
+# stage puts all its metadata before its two COPY --from steps.
 ARG BASE=python:3.12-slim
 
-# ---- build stage: /opt/venv holds the project with its app extra ----------
-FROM ${BASE} AS build
+# ---- deps: /opt/venv with the dependencies of the project and its app extra -
+FROM ${BASE} AS deps
 ENV PIP_NO_CACHE_DIR=1 \
     PIP_DISABLE_PIP_VERSION_CHECK=1 \
     PIP_ROOT_USER_ACTION=ignore
 WORKDIR /src
 COPY pyproject.toml ./
 # Whichever python3 the base has (/usr/local/bin in python:*, /usr/bin in
-# Debian's).  The dependencies are read from pyproject.toml, so editing the
-# code does not reinstall numpy, scipy and panel.
+# Debian's).  The requirements are read from pyproject.toml, so only a change
+# there reinstalls numpy, scipy and panel.  The test suites that wheels ship
+# (~90 MB) and pip go; a .pth file puts the project (next stage) on sys.path.
 RUN python3 -c 'import sys; sys.exit(sys.version_info < (3, 12))' \
     || { echo "error: BASE must provide python3 >= 3.12" >&2; exit 1; } \
     && python3 -m venv /opt/venv \
     && /opt/venv/bin/python -c "import tomllib; p = tomllib.load(open('pyproject.toml', 'rb'))['project']; print('\n'.join(p['dependencies'] + p['optional-dependencies']['app']))" > requirements.txt \
-    && /opt/venv/bin/pip install --no-cache-dir -r requirements.txt
-# The context holds only what .dockerignore lets through: pyproject.toml,
-# README.md, core/, app/ and docker/entrypoint.sh.
-COPY . .
-# Install the project itself, drop the test suites that wheels ship (~90 MB)
-# and pip, and lay out /opt/zharii: app -> the installed package, entrypoint.
-RUN /opt/venv/bin/pip install --no-cache-dir --no-deps '.[app]' \
-    && /opt/venv/bin/python -P -c 'import core, app, panel, bokeh; print("installed: panel", panel.__version__, "bokeh", bokeh.__version__)' \
+    && /opt/venv/bin/pip install --no-cache-dir -r requirements.txt \
     && find /opt/venv -depth -type d -name tests -path '*/site-packages/*/*' -exec rm -rf {} + \
     && /opt/venv/bin/pip uninstall --yes --quiet pip \
-    && mkdir -p /opt/zharii \
-    && ln -s "$(/opt/venv/bin/python -P -c 'import app, os; print(os.path.dirname(app.__file__))')" /opt/zharii/app \
-    && cp docker/entrypoint.sh /opt/zharii/entrypoint.sh \
-    && chmod 0755 /opt/zharii/entrypoint.sh \
-    && /opt/venv/bin/python -P -c 'import core, app.explorer, panel, scipy.special, pandas'
+    && echo /opt/zharii/lib > "$(/opt/venv/bin/python -c 'import sysconfig; print(sysconfig.get_path("purelib"))')/zharii.pth"
 
-# ---- runtime stage ---------------------------------------------------------
+# ---- pkg: the project itself, pip-installed from the build context ----------
+FROM ${BASE} AS pkg
+# The context holds only what .dockerignore lets through: pyproject.toml,
+# README.md, core/, app/ and docker/entrypoint.sh.
+WORKDIR /src
+COPY . .
+# /opt/zharii/lib: the installed packages core and app (+ metadata);
+# /opt/zharii/app -> lib/app, so that `panel serve app/main.py` serves them.
+RUN python3 -m venv /tmp/pip \
+    && /tmp/pip/bin/pip install --no-cache-dir --disable-pip-version-check --root-user-action=ignore \
+         --no-deps --target /opt/zharii/lib '.[app]' \
+    && ln -s lib/app /opt/zharii/app \
+    && test -f /opt/zharii/app/main.py \
+    && cp docker/entrypoint.sh /opt/zharii/entrypoint.sh \
+    && chmod 0755 /opt/zharii/entrypoint.sh
+
+# ---- runtime ----------------------------------------------------------------
 FROM ${BASE}
 LABEL org.opencontainers.image.title="zharii-explorer" \
       org.opencontainers.image.description="Interactive explorer of Zharii's exact solution for the intermittent frictional contact of two elastic spheres (Panel/Bokeh server)" \
@@ -63,4 +70,5 @@ HEALTHCHECK --interval=30s --timeout=5s --start-period=60s --retries=3 \
 ENTRYPOINT ["/opt/zharii/entrypoint.sh"]
 CMD []
 USER 10001:10001
-COPY --from=build /opt /opt
+COPY --from=deps /opt/venv /opt/venv
+COPY --from=pkg /opt/zharii /opt/zharii
