@@ -28,7 +28,7 @@ $$T = T_0 (\sin\tau - \sin\tau_0)^{3/2}$$
     3: ("Partial stick (π/2 < τ < τ₁; eqs 24, 30, 39)", r"""
 $$\tau_u(r) = -\frac{4\mu G}{(1-\nu)\pi R}\left[\sqrt{a^2-r^2} - 2\sqrt{b^2-r^2}\right] \quad (r \le b)$$
 
-$$\tau_u(r) = -\mu p(r) \quad (b < r < a)$$
+$$\tau_u(r) = -\mu p(r) \quad (b \lt r \lt a)$$
 
 $$b^2 = \frac{\psi+1}{2} \frac{RH}{2} (\sin\tau - \sin\tau_1),\qquad
 \sin\tau_1 = 1 - \frac{2(1-\sin\tau_0)}{\psi+1}$$
