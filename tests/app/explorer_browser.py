@@ -12,6 +12,7 @@ import shutil
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 import urllib.request
 from collections.abc import Iterator
@@ -67,14 +68,17 @@ def explorer_server() -> Iterator[str]:
         yield url.rstrip("/")
         return
     port = free_port()
-    (ROOT / "artifacts").mkdir(exist_ok=True)
-    log = open(ROOT / "artifacts" / f"panel-serve-{port}.log", "w")
+    log = tempfile.TemporaryFile("w+")
     cmd = [sys.executable, "-m", "panel", "serve", "app/main.py", "--port", str(port),
            "--address", "127.0.0.1", f"--allow-websocket-origin=127.0.0.1:{port}",
            "--liveness", "--index", "main"]
     proc = subprocess.Popen(cmd, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT)
     try:
-        wait_for_http(f"http://127.0.0.1:{port}/liveness")
+        try:
+            wait_for_http(f"http://127.0.0.1:{port}/liveness")
+        except TimeoutError as err:
+            log.seek(0)
+            raise TimeoutError(f"{err}; panel serve said:\n{log.read()[-3000:]}") from err
         yield f"http://127.0.0.1:{port}/main"
     finally:
         proc.terminate()
