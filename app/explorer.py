@@ -4,12 +4,13 @@
 a parameter change rebuilds the `core.Contact` once and lets every scene refresh its
 curves; a change of tau (the scrubber, or an animation frame) refreshes only what
 depends on tau.  All changes of one step are sent to the browser in one message
-(`panel.io.hold`).  The animation runs on the server (`pn.state.add_periodic_callback`),
-so frames do not wait for widget round trips.
+(`panel.io.hold`).  The animation is played by the browser from frames computed here
+(`app.player`); a slow server tick keeps the scrubber and the formulas in step.
 """
 
 from __future__ import annotations
 
+import html
 import io
 import math
 import time
@@ -17,10 +18,12 @@ from urllib.parse import urlencode
 
 import numpy as np
 import panel as pn
+from bokeh.models import Div, InlineStyleSheet
 from panel.io import hold
 
 from app.formulas import formulas
 from app.methods import MethodsScene
+from app.player import Player, frame_index, frame_taus
 from app.scenes import (
     PHASE_COLORS,
     DiscScene,
@@ -35,9 +38,14 @@ from app.state import PRESETS, ExplorerState, parse_query
 from core import Contact
 
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
-FRAME_MS = 20  # animation period on the server (50 frames/s requested)
-MAX_FRAME_DT = 0.1  # a late frame never jumps more than this (s)
-SLOW_UPDATE_S = 0.5  # while playing, scrubber and caption follow at most this often (s)
+SLOW_UPDATE_S = 0.5  # while playing, the server moves scrubber and formulas this often (s)
+
+#: The derived-quantities table.
+READOUT_CSS = """
+table { border-collapse: collapse; font-size: 1rem; }
+th, td { border: 1px solid #bbb; padding: 0.25em 0.6em; text-align: left; }
+th { background: #f3f3f3; }
+"""
 
 #: Colour key of the contact disc (the figure has no legend, see DiscScene).
 DISC_KEY = " ".join(
@@ -64,10 +72,8 @@ class Explorer:
             self._apply_query(values)
         self.contact: Contact = self.state.contact()
         self._callback = None
-        self._last_tick = 0.0
         self._syncing = False
         self._shown_phase = -1
-        self._last_slow = 0.0
 
         self.traction = TractionScene()
         self.disc = DiscScene()
@@ -78,6 +84,9 @@ class Explorer:
         self.scenes: list[Scene] = [self.traction, self.disc, self.force, self.impulse,
                                     self.radii, self.motion]
         self.methods = MethodsScene()
+        self.player = Player(self.traction, self.disc, [self.force, self.radii, self.motion],
+                             self.traction.caption, self.traction.figure)
+        self._play_start = (0.0, 0.0)  # (progress, time.monotonic()) when play last started
 
         self._build_widgets()
         self.state.param.watch(self._on_params, ["psi", "tau0", "mu", "nu", "physical", "R",
@@ -85,6 +94,7 @@ class Explorer:
         self.state.param.watch(self._on_tau, ["tau"])
         self.state.param.watch(self._on_log, ["log_psi"])
         self.state.param.watch(self._on_playing, ["playing"])
+        self.state.param.watch(self._on_speed, ["speed"])
         self.impulse.set_log(self.state.log_psi)
         self.refresh()
 
@@ -112,11 +122,13 @@ class Explorer:
             family = preset.family if preset else ()
             self.force.set_family([Contact(p, c.tau0, mu=c.mu, nu=c.nu) for p in family])
             self.tau_slider.param.update(start=c.tau0, end=c.tau_end, value=tau)
-            self.readout.object = self._readout_text(c)
+            self.readout.text = self._readout_text(c)
             self._show_formulas(c, tau)
             self.traction.caption.text = self._now_text(c, tau)
             self.methods.update_contact(c)
             self.downloads_filename()
+            if self.state.playing:  # the player goes on with the new contact's frames
+                self._start_player(self._progress_of(tau))
         self._write_url()
 
     def _on_params(self, *events) -> None:
@@ -154,29 +166,29 @@ class Explorer:
     def _on_tau(self, *events) -> None:
         if self._syncing:
             return
+        if self.state.playing:  # the scrubber moved while playing: play on from there
+            self._start_player(self._progress_of(self.state.tau))
+            return
         self.update_tau()
-        if not self.state.playing:
-            self._write_url()
+        self._write_url()
 
     def update_tau(self) -> None:
-        """Refresh what depends on tau only: one animation frame.
-
-        While playing, the scrubber and the caption (each change makes the browser lay
-        the page or the plot out again) follow at most every SLOW_UPDATE_S; the plots
-        follow every frame.
-        """
+        """Refresh what depends on tau only (a scrub, a step, the frame a pause lands on)."""
         c, tau = self.contact, self.state.tau
-        now = time.monotonic()
-        slow = not self.state.playing or now - self._last_slow >= SLOW_UPDATE_S
         with hold():
             for scene in self.scenes:
                 scene.update_tau(c, tau)
             self.methods.update_tau(c, tau)
             self._show_formulas(c, tau)
-            if slow:
-                self._last_slow = now
-                self.traction.caption.text = self._now_text(c, tau)
-                self.tau_slider.value = tau
+            self.traction.caption.text = self._now_text(c, tau)
+            self._move_scrubber(tau)
+
+    def _move_scrubber(self, tau: float) -> None:
+        self._syncing = True
+        try:
+            self.tau_slider.value = tau
+        finally:
+            self._syncing = False
 
     def _show_formulas(self, c: Contact, tau: float) -> None:
         phase = int(np.asarray(c.phase(tau)).reshape(-1)[0])
@@ -196,8 +208,9 @@ class Explorer:
         """Advance tau as `seconds` of animation at the current speed; wrap at the end.
 
         Returns the new tau.  The last frame of a contact lands exactly on pi - tau0;
-        the next one starts again at tau0.
+        the next one starts again at tau0.  Stepping pauses a running animation.
         """
+        self.state.playing = False
         c = self.contact
         tau = self.state.tau
         if tau >= c.tau_end:
@@ -208,27 +221,56 @@ class Explorer:
         self.state.tau = new
         return new
 
+    def _progress_of(self, tau: float) -> float:
+        """Where tau lies in the contact, in [0, 1)."""
+        c = self.contact
+        return min(max((tau - c.tau0) / (c.tau_end - c.tau0), 0.0), 1.0) % 1.0
+
+    def clock_tau(self, now: float | None = None) -> float:
+        """The tau of the frame the browser's player shows at time `now` (monotonic s)."""
+        progress, started = self._play_start
+        now = time.monotonic() if now is None else now
+        progress += self.state.speed * (now - started) / CONTACT_SECONDS
+        return float(frame_taus(self.contact)[frame_index(progress)])
+
+    def _start_player(self, progress: float) -> None:
+        """(Re)start the browser's player at `progress` with the current contact and speed."""
+        c = self.contact
+        self._play_start = (progress, time.monotonic())
+        self.player.play(c, progress, self.state.speed, CONTACT_SECONDS,
+                         self._now_texts(c, frame_taus(c)))
+
     def _tick(self) -> None:
-        now = time.monotonic()
-        dt = min(now - self._last_tick, MAX_FRAME_DT) if self._last_tick else FRAME_MS / 1e3
-        self._last_tick = now
-        self.step(dt)
+        """Slow server tick while playing: scrubber, formulas and state follow the clock."""
+        tau = self.clock_tau()
+        self._set_silently(tau=tau)
+        with hold():
+            self._move_scrubber(tau)
+            self._show_formulas(self.contact, tau)
+
+    def _on_speed(self, event) -> None:
+        if self.state.playing:  # keep the current frame, change the pace
+            self._start_player(self._progress_of(self.clock_tau()))
 
     def _on_playing(self, event) -> None:
         self.play_button.label = "⏸ Pause" if event.new else "▶ Play"
         self.play_button.color = "warning" if event.new else "success"
-        doc = pn.state.curdoc
-        served = doc is not None and doc.session_context is not None
-        if event.new and served:
-            self._last_tick = 0.0
-            if self._callback is None:
-                self._callback = pn.state.add_periodic_callback(self._tick, period=FRAME_MS)
-            elif not self._callback.running:
-                self._callback.start()
-        elif not event.new:
+        if event.new:
+            self._start_player(self._progress_of(self.state.tau))
+            doc = pn.state.curdoc
+            if doc is not None and doc.session_context is not None:
+                if self._callback is None:
+                    self._callback = pn.state.add_periodic_callback(
+                        self._tick, period=int(SLOW_UPDATE_S * 1000))
+                elif not self._callback.running:
+                    self._callback.start()
+        else:
             if self._callback is not None and self._callback.running:
                 self._callback.stop()
-            self.update_tau()  # the text and scrubber catch up
+            tau = self.clock_tau()
+            self.player.stop()
+            self._set_silently(tau=tau)
+            self.update_tau()  # the plots settle on the frame the player was showing
             self._write_url()
 
     # ------------------------------------------------------------------- view
@@ -285,8 +327,11 @@ class Explorer:
         self.message = pn.pane.Alert("", alert_type="warning", visible=False,
                                      sizing_mode="stretch_width", name="query_message")
         self.show_messages(self.messages)
-        self.readout = pn.pane.Markdown("", sizing_mode="stretch_width",
-                                        css_classes=["pn-readout"])
+        # a plain Bokeh Div: Panel's Markdown and HTML panes re-send their stylesheets
+        # with every new text, and each restyle makes the browser recompute the styles
+        # of the whole page (~100 ms a slider move here)
+        self.readout = Div(text="", sizing_mode="stretch_width", name="readout",
+                           stylesheets=[InlineStyleSheet(css=READOUT_CSS)])
         self.formulas = pn.pane.Markdown("", sizing_mode="stretch_width")
         self.downloads = {
             key: pn.widgets.FileDownload(callback=lambda key=key: self.csv_file(key),
@@ -304,9 +349,13 @@ class Explorer:
             self.state.apply_material(event.new)
 
     def show_messages(self, messages: list[str]) -> None:
-        """Show warnings (e.g. rejected URL values) above the plots; [] hides them."""
-        self.message.object = "\n".join(f"- {m}" for m in messages)
-        self.message.visible = bool(messages)
+        """Show warnings (e.g. rejected URL values) above the plots; [] hides them.
+
+        Unchanged messages are not sent again: re-rendering the alert restyles the page.
+        """
+        text = "\n".join(f"- {m}" for m in messages)
+        if text != self.message.object or self.message.visible != bool(messages):
+            self.message.param.update(object=text, visible=bool(messages))
 
     def _readout_text(self, c: Contact) -> str:
         rows = [
@@ -329,20 +378,26 @@ class Explorer:
                 ("tangential impulse", f"{sc.tangential_impulse:.4g} N·s"),
                 ("period 2π/ω", f"{sc.period * 1e6:.4g} µs"),
             ]
-        return "| quantity | value |\n|---|---|\n" + "\n".join(f"| {k} | {v} |"
-                                                            for k, v in rows)
+        body = "".join(f"<tr><td>{html.escape(k)}</td><td>{html.escape(v)}</td></tr>"
+                       for k, v in rows)
+        return f"<table><tr><th>quantity</th><th>value</th></tr>{body}</table>"
 
     def _now_text(self, c: Contact, tau: float) -> str:
-        t = np.array([tau])
-        T, a, b = (float(f(t)[0]) for f in (c.tangential_force, c.contact_radius,
-                                             c.stick_radius))
-        text = f"τ = {tau:.4f} rad  T/T₀ = {T:+.4f}\na/a* = {a:.4f}  b/a* = {b:.4f}"
+        return self._now_texts(c, np.array([tau]))[0]
+
+    @staticmethod
+    def _now_texts(c: Contact, taus: np.ndarray) -> list[str]:
+        """The caption of the traction plot at each of the times taus."""
+        T, a, b = (f(taus) for f in (c.tangential_force, c.contact_radius, c.stick_radius))
+        texts = [f"τ = {t:.4f} rad  T/T₀ = {x:+.4f}\na/a* = {y:.4f}  b/a* = {z:.4f}"
+                 for t, x, y, z in zip(taus, T, a, b, strict=True)]
         sc = c.scales
         if sc is not None:
-            t = tau * sc.period / (2 * math.pi)
-            text += (f"\nt = {t * 1e6:.4g} µs  T = {T * sc.T0:.4g} N\n"
-                     f"a = {a * sc.a_star * 1e6:.4g} µm  b = {b * sc.a_star * 1e6:.4g} µm")
-        return text
+            texts = [text + (f"\nt = {t * sc.period / (2 * math.pi) * 1e6:.4g} µs"
+                             f"  T = {x * sc.T0:.4g} N\n"
+                             f"a = {y * sc.a_star * 1e6:.4g} µm  b = {z * sc.a_star * 1e6:.4g} µm")
+                     for text, t, x, y, z in zip(texts, taus, T, a, b, strict=True)]
+        return texts
 
     # ---------------------------------------------------------------- outputs
 
@@ -418,7 +473,8 @@ class Explorer:
                 card(pn.pane.Bokeh(self.disc.figure), pn.pane.HTML(DISC_KEY),
                      title="Contact disc", flex="0 0 380px"),
                 card(self.formulas, title="Formulas of the current phase", flex="2 1 480px"),
-                card(self.readout, title="Derived quantities", flex="1 1 380px"),
+                card(pn.pane.Bokeh(self.readout, sizing_mode="stretch_width"),
+                     title="Derived quantities", flex="1 1 380px"),
                 card(pn.pane.Bokeh(self.force.figure, sizing_mode="stretch_width"),
                      title="T(τ) (Fig. 7)"),
                 card(pn.pane.Bokeh(self.impulse.linear_figure, sizing_mode="stretch_width"),

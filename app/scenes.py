@@ -18,14 +18,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from bokeh.models import ColumnDataSource, Label, Range1d, Span
+from bokeh.models import ColumnDataSource, Label, Range1d
 from bokeh.plotting import figure
 
 from core import PHASE_NAMES, Contact, Phase, impulse_ratio
 
 TOOLS = "pan,wheel_zoom,box_zoom,reset,save"
 CURVE_POINTS = 400  # points per curve over the contact: finer than any screen needs
-PROFILE_POINTS = 301  # points across the contact diameter for the traction profile
+PROFILE_POINTS = 151  # points across the contact diameter for the traction profile
 
 #: One colour per contact phase (Okabe-Ito, colour-blind safe).
 PHASE_COLORS: dict[int, str] = {
@@ -139,24 +139,33 @@ class TractionScene(Scene):
         self.figure.y_range.start, self.figure.y_range.end = -1.6 * p_max, 1.6 * p_max
         self.caption.x, self.caption.y = 1.08 * a_max, 1.55 * p_max
 
+    def profiles(self, c: Contact, taus: np.ndarray) -> dict[str, np.ndarray]:
+        """The profile at each of the K times `taus`: columns of shape (K, L).
+
+        Each row is the r grid with -a, a, -b, b inserted (sharp corners at the contact
+        and stick edges), so every frame has the same length L and the browser's player
+        can copy frames into the plotted arrays in place.
+        """
+        taus = np.atleast_1d(np.asarray(taus, float))
+        a, b = c.contact_radius(taus), c.stick_radius(taus)
+        grid = np.broadcast_to(self.r_grid, (taus.size, self.r_grid.size))
+        r = np.sort(np.concatenate([grid, np.stack([-a, a, -b, b], axis=1)], axis=1), axis=1)
+        t = taus[:, None]
+        p = c.pressure(r, t)
+        stick = (np.abs(r) <= b[:, None]) & (b[:, None] > 0)
+        return {"r": r, "traction": c.traction(r, t), "upper": p, "lower": -p,
+                "stick_lo": np.where(stick, -p, 0.0), "stick_hi": np.where(stick, p, 0.0)}
+
+    @staticmethod
+    def phase_style(phase: int) -> dict[str, str]:
+        """Title text and colour naming a phase."""
+        return {"title": f"Traction: {PHASE_NAMES[phase]}", "title_color": PHASE_COLORS[phase]}
+
     def update_tau(self, c: Contact, tau: float) -> None:
-        a = float(c.contact_radius(tau))
-        b = float(c.stick_radius(tau))
-        r = np.unique(np.concatenate([self.r_grid, [-a, a, -b, b]]))
-        p = c.pressure(r, tau)
-        stick = np.abs(r) <= b if b > 0 else np.zeros(r.shape, bool)
-        phase = int(np.asarray(c.phase(tau)).reshape(-1)[0])
-        self.source.data = {
-            "r": r,
-            "traction": c.traction(r, tau),
-            "upper": p,
-            "lower": -p,
-            "stick_lo": np.where(stick, -p, 0.0),
-            "stick_hi": np.where(stick, p, 0.0),
-        }
-        self.line.glyph.line_color = PHASE_COLORS[phase] if phase != 1 else "black"
-        self.figure.title.text_color = PHASE_COLORS[phase]
-        self.figure.title.text = f"Traction: {PHASE_NAMES[phase]}"  # changes once a phase
+        self.source.data = {k: v[0] for k, v in self.profiles(c, np.array([tau])).items()}
+        style = self.phase_style(int(np.asarray(c.phase(tau)).reshape(-1)[0]))
+        self.figure.title.text_color = style["title_color"]
+        self.figure.title.text = style["title"]  # changes once a phase
 
 
 class DiscScene(Scene):
@@ -186,6 +195,11 @@ class DiscScene(Scene):
         self.figure.x_range.start, self.figure.x_range.end = -1.15 * a_max, 1.15 * a_max
         self.figure.y_range.start, self.figure.y_range.end = -1.15 * a_max, 1.15 * a_max
 
+    @staticmethod
+    def slip_color(phase: int) -> str:
+        """Colour of the annulus outside the stick disc: slip or counter-slip."""
+        return PHASE_COLORS[4 if phase == 3 else phase]
+
     def update_tau(self, c: Contact, tau: float) -> None:
         a = float(c.contact_radius(tau))
         b = float(c.stick_radius(tau))
@@ -193,7 +207,7 @@ class DiscScene(Scene):
         slip = "counter-slip" if phase in (3, 4) else "slip"
         self.source.data = {
             "x": [0.0, 0.0], "y": [0.0, 0.0], "inner": [0.0, b], "outer": [b, a],
-            "color": [STICK_COLOR, PHASE_COLORS[4 if phase == 3 else phase]],
+            "color": [STICK_COLOR, self.slip_color(phase)],
             "label": ["stick", slip],
         }
 
@@ -211,16 +225,19 @@ class CurveScene(Scene):
 
     def __init__(self) -> None:
         super().__init__({"tau": [], **{col: [] for col, *_ in self.curves}})
-        self.marker = ColumnDataSource({"x": [], "y": [], "color": []}, name=f"{self.name}_marker")
+        self.marker = ColumnDataSource({"x": [], "y": [], "color": [], "lo": [], "hi": []},
+                                       name=f"{self.name}_marker")
         fig = _figure(self.title, "τ = ωt (rad)", self.y_label)
         for col, label, color, dash in self.curves:
             fig.line("tau", col, source=self.source, color=color, line_width=3, line_dash=dash,
                      legend_label=label)
         fig.scatter("x", "y", source=self.marker, size=13, color="color", line_color="black",
                     level=FRAME_LEVEL)
-        self.span = Span(location=0.0, dimension="height", line_color="#666666", line_width=2,
-                         line_dash="dotted", level=FRAME_LEVEL)
-        fig.add_layout(self.span)
+        # the cursor at the current tau is drawn from the marker's own source, so that a
+        # frame changes one data source per plot (moving a Span model costs the browser
+        # a full repaint of the plot)
+        fig.segment(x0="x", y0="lo", x1="x", y1="hi", source=self.marker, line_color="#666666",
+                    line_width=2, line_dash="dotted", level=FRAME_LEVEL)
         _style(fig)
         self.figure = fig
 
@@ -237,12 +254,15 @@ class CurveScene(Scene):
 
     def update_tau(self, c: Contact, tau: float) -> None:
         values = self.columns(c, np.array([tau]))
+        n = len(self.curves)
+        y_range = self.figure.y_range
         self.marker.data = {
-            "x": [tau] * len(self.curves),
+            "x": [tau] * n,
             "y": [float(values[col][0]) for col, *_ in self.curves],
             "color": [color for _, _, color, _ in self.curves],
+            "lo": [y_range.start] * n,
+            "hi": [y_range.end] * n,
         }
-        self.span.location = tau
 
 
 class ForceScene(CurveScene):

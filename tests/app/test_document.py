@@ -12,8 +12,10 @@ import math
 import numpy as np
 import pytest
 
+import app.explorer
 from app.explorer import CONTACT_SECONDS, Explorer
-from app.scenes import CURVE_POINTS
+from app.player import frame_index, frame_taus
+from app.scenes import CURVE_POINTS, PROFILE_POINTS
 from app.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
 from core import PHASE_NAMES, Contact, impulse_ratio
 
@@ -58,7 +60,9 @@ def assert_sources_match_core(ex: Explorer) -> None:
 
     d = ex.traction.source.data
     r = np.asarray(d["r"])
-    assert r.size > 300 and np.all(np.diff(r) > 0)
+    # the grid with -a, a, -b, b inserted: a constant length, so the player can copy
+    # frames in place (duplicates where b = 0 or b = a)
+    assert r.size == PROFILE_POINTS + 4 and np.all(np.diff(r) >= 0)
     eq(d["traction"], c.traction(r, tau))
     eq(d["upper"], c.pressure(r, tau))
     a, b = float(c.contact_radius(tau)), float(c.stick_radius(tau))
@@ -105,8 +109,8 @@ def test_widget_change_recomputes_every_source(ex: Explorer, widget: str, value:
 def test_theta_readout_follows_mu_and_nu(ex: Explorer) -> None:
     ex.mu_slider.value = 0.5
     c = contact_of(ex)
-    assert f"{math.degrees(c.theta0):.3f}°" in ex.readout.object
-    assert f"{math.degrees(c.theta):.3f}°" in ex.readout.object
+    assert f"{math.degrees(c.theta0):.3f}°" in ex.readout.text
+    assert f"{math.degrees(c.theta):.3f}°" in ex.readout.text
 
 
 def test_tau_change_updates_only_tau_dependent_data(ex: Explorer) -> None:
@@ -114,7 +118,7 @@ def test_tau_change_updates_only_tau_dependent_data(ex: Explorer) -> None:
     ex.tau_slider.value = 1.0
     assert ex.state.tau == 1.0
     assert ex.force.source.data is force_data  # curves untouched by a tau change
-    assert ex.force.span.location == 1.0
+    assert list(ex.force.marker.data["x"]) == [1.0] * 3  # markers and the tau cursor
     assert_sources_match_core(ex)
     assert "Slip while loading" in ex.formulas.object
 
@@ -278,19 +282,59 @@ def test_step_advances_tau_and_wraps(ex: Explorer) -> None:
     assert ex.step() == c.tau0  # then the contact starts again
 
 
-def test_step_button_and_play_toggle(ex: Explorer) -> None:
+def test_step_button_and_play_toggle(ex: Explorer, monkeypatch) -> None:
     tau = ex.state.tau
     ex.step_button.clicks += 1
     assert ex.state.tau > tau
+    c = contact_of(ex)
+    ex.state.tau = c.tau0
     ex.play_button.clicks += 1
     assert ex.state.playing and "Pause" in ex.play_button.label
+    progress, started = ex._play_start
+    assert progress == 0.0
+    now = [started]
+    monkeypatch.setattr(app.explorer.time, "monotonic", lambda: now[0])
     ticks = [ex.state.tau]
-    for _ in range(3):
+    for _ in range(3):  # the server's tick follows the browser player's clock
+        now[0] += 0.51  # (steps off the frame boundaries: 0.51 s = 30.6 frames)
         ex._tick()
         ticks.append(ex.state.tau)
     assert all(b > a for a, b in itertools.pairwise(ticks))
-    ex.play_button.clicks += 1
+    expected = frame_taus(c)[frame_index(ex.state.speed * 1.53 / CONTACT_SECONDS)]
+    assert ticks[-1] == expected and ex.tau_slider.value == expected
+    now[0] += 0.23
+    ex.play_button.clicks += 1  # pause: the plots settle on the frame being shown
     assert not ex.state.playing and "Play" in ex.play_button.label
+    assert ex.state.tau == frame_taus(c)[frame_index(ex.state.speed * 1.76 / CONTACT_SECONDS)]
+    assert len(ex.player.frames.data) == 0
+    assert_sources_match_core(ex)
+
+
+def test_play_sends_the_frames_of_the_contact(ex: Explorer) -> None:
+    """The browser's player only copies frames: each one is what core computes."""
+    ex.state.playing = True
+    c = contact_of(ex)
+    taus = frame_taus(c)
+    f, p = ex.player.frames.data, ex.player.profiles.data
+    eq(f["tau"], taus)
+    eq(f["a"], c.contact_radius(taus))
+    eq(f["b"], c.stick_radius(taus))
+    eq(f["phase"], c.phase(taus))
+    eq(f["force:T"], c.tangential_force(taus))
+    eq(f["force:muP"], c.normal_force(taus))
+    eq(f["radii:b"], c.stick_radius(taus))
+    eq(f["motion:u2"], c.centre_displacement(taus))
+    assert f["caption"][0].startswith(f"τ = {c.tau0:.4f} rad")
+    shape = (taus.size, PROFILE_POINTS + 4)
+    r = np.asarray(p["r"]).reshape(shape)
+    eq(np.asarray(p["traction"]).reshape(shape), c.traction(r, taus[:, None]))
+    eq(np.asarray(p["upper"]).reshape(shape), c.pressure(r, taus[:, None]))
+    # a parameter change while playing sends the new contact's frames
+    ex.psi_slider.value = 6.46
+    c = contact_of(ex)
+    eq(ex.player.frames.data["force:T"], c.tangential_force(frame_taus(c)))
+    ex.state.playing = False
+    assert len(ex.player.frames.data) == 0 and len(ex.player.profiles.data) == 0
 
 
 # ---------------------------------------------------------- physical units
@@ -306,7 +350,7 @@ def test_physical_inputs_give_si_scales(ex: Explorer) -> None:
     assert (s.psi, s.tau0) == (c.psi, c.tau0)
     assert ex.psi_slider.disabled and ex.tau0_slider.disabled
     assert_sources_match_core(ex)
-    assert f"{c.scales.T0:.4g} N" in ex.readout.object
+    assert f"{c.scales.T0:.4g} N" in ex.readout.text
     table = read_csv(ex.csv_text("curves"))
     np.testing.assert_allclose(table["T_N"], table["T"] * c.scales.T0, rtol=1e-9)
     assert " N\na = " in ex.traction.caption.text
