@@ -37,7 +37,8 @@ RUN python3 -c 'import sys; sys.exit(sys.version_info < (3, 12))' \
 # ---- pkg: the project itself, pip-installed from the build context ----------
 FROM ${BASE} AS pkg
 # The context holds only what .dockerignore lets through: pyproject.toml,
-# README.md, core/, app/ and docker/entrypoint.sh.
+# README.md, core/, app/, docker/entrypoint.sh and benchmarks/results/*.csv
+# (charted by the app's Methods scene, next to app/ as in the repository).
 WORKDIR /src
 COPY . .
 # /opt/zharii/lib: the installed packages core and app (+ metadata);
@@ -47,6 +48,8 @@ RUN python3 -m venv /tmp/pip \
          --no-deps --target /opt/zharii/lib '.[app]' \
     && ln -s lib/app /opt/zharii/app \
     && test -f /opt/zharii/app/main.py \
+    && mkdir -p /opt/zharii/lib/benchmarks/results \
+    && cp benchmarks/results/*.csv /opt/zharii/lib/benchmarks/results/ \
     && cp docker/entrypoint.sh /opt/zharii/entrypoint.sh \
     && chmod 0755 /opt/zharii/entrypoint.sh
 
