@@ -17,16 +17,17 @@ Usage: .venv/bin/python benchmarks/methods.py [--quick]
 from __future__ import annotations
 
 import argparse
-import csv
 import sys
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "benchmarks"))
 
 import mpmath as mp  # noqa: E402
 import numpy as np  # noqa: E402
+from results_csv import read_csv, write_csv  # noqa: E402
 from tqdm import tqdm  # noqa: E402
 
 from core import Contact, impulse_ratio  # noqa: E402
@@ -160,25 +161,6 @@ def run_all(psis, tau0s, ladders) -> list[dict]:
                          wall_time=wall, err_T=e.T, err_impulse=e.impulse, err_b=e.b,
                          err=e.combined, err_rel=e.combined_rel))
     return rows
-
-
-def read_csv(path: Path) -> list[dict]:
-    """Rows written by ``write_csv`` (numbers back to int / float)."""
-    rows = []
-    with path.open() as fh:
-        for row in csv.DictReader(fh):
-            rows.append({k: (v if k == "method" else int(v) if k == "resolution"
-                             else float(v)) for k, v in row.items()})
-    return rows
-
-
-def write_csv(rows: list[dict], path: Path) -> None:
-    with path.open("w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=FIELDS)
-        writer.writeheader()
-        for row in rows:
-            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v)
-                             for k, v in row.items()})
 
 
 def summary(rows: list[dict]) -> dict[tuple[str, int], dict]:
@@ -348,7 +330,7 @@ def main(argv: list[str] | None = None) -> None:
            f"impulse vectorised over 1000 psi ({np.median(list(amortised.values())) * 1e9:.0f}"
            " ns per case)"] = amortised_ratios
     if not args.replot:
-        write_csv(rows, out / "speed_accuracy.csv")
+        write_csv(rows, out / "speed_accuracy.csv", FIELDS)
     (out / "methods_table.md").write_text(markdown(rows, summ, groups))
     chart(rows, summ, out / "speed_accuracy.html")
     for title, ratios in groups.items():

@@ -19,14 +19,15 @@ Usage: .venv/bin/python benchmarks/stability_map.py [--quick]
 from __future__ import annotations
 
 import argparse
-import csv
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "benchmarks"))
 
 import numpy as np  # noqa: E402
+from results_csv import read_csv, write_csv  # noqa: E402
 from tqdm import tqdm  # noqa: E402
 
 from core import Contact  # noqa: E402
@@ -63,25 +64,6 @@ def run(psis: np.ndarray, tau0s: np.ndarray) -> list[dict]:
                              rel_err_impulse=e.impulse / abs(c.impulse_ratio),
                              wall_time=res.wall_time))
     return rows
-
-
-def read_csv(path: Path) -> list[dict]:
-    """Rows written by ``write_csv`` (numbers back to int / float)."""
-    rows = []
-    with path.open() as fh:
-        for row in csv.DictReader(fh):
-            rows.append({k: (v if k == "method" else int(v) if k == "resolution"
-                             else float(v)) for k, v in row.items()})
-    return rows
-
-
-def write_csv(rows: list[dict], path: Path) -> None:
-    with path.open("w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=FIELDS)
-        writer.writeheader()
-        for row in rows:
-            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v)
-                             for k, v in row.items()})
 
 
 def heat_maps(rows: list[dict], psis, tau0s, path: Path) -> None:
@@ -159,7 +141,7 @@ def main(argv: list[str] | None = None) -> None:
         tau0s = np.array(sorted({r["tau0"] for r in rows}))
     else:
         rows = run(psis, tau0s)
-        write_csv(rows, out / "stability_map.csv")
+        write_csv(rows, out / "stability_map.csv", FIELDS)
     heat_maps(rows, psis, tau0s, out / "stability_map.html")
     for name in BUDGET:
         errs = np.array([r["err"] for r in rows if r["method"] == name])
