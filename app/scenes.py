@@ -358,6 +358,7 @@ class ImpulseScene(Scene):
         super().__init__({"psi": [], "ratio": []})
         self.marker = ColumnDataSource({"psi": [], "ratio": []}, name="impulse_marker")
         self.log = False
+        self._shown: tuple = ()  # (tau0, log, first psi, last psi) of the curve shown
         self.linear_figure = self._make("linear")
         self.log_figure = self._make("log")
         self.log_figure.visible = False
@@ -369,7 +370,7 @@ class ImpulseScene(Scene):
                       x_axis_type=axis, x_range=x_range)
         fig.line("psi", "ratio", source=self.source, color="black", line_width=3)
         fig.scatter("psi", "ratio", source=self.marker, size=14, color="#D55E00",
-                    line_color="black")
+                    line_color="black", level=FRAME_LEVEL)
         _style(fig)
         return fig
 
@@ -381,16 +382,24 @@ class ImpulseScene(Scene):
         self.figure = self.log_figure if log else self.linear_figure
 
     def psi_grid(self, psi: float) -> np.ndarray:
-        """The psi values plotted: screen-fine, through psi = 1 and the current psi."""
+        """The psi values plotted: screen-fine, through psi = 1 (the peak), reaching psi.
+
+        It depends on psi only when psi lies beyond the default range, so that moving psi
+        sends only the marker, not the curve (computed exactly by core either way)."""
         if self.log:
             lo, hi = self.LOG_RANGE
             grid = np.geomspace(min(lo, psi), max(hi, psi), CURVE_POINTS)
         else:
             grid = np.linspace(0.0, max(self.LINEAR_MAX, 1.1 * psi), CURVE_POINTS)
-        return np.unique(np.concatenate([grid, [1.0, psi]]))
+        return np.unique(np.concatenate([grid, [1.0]]))
 
     def update_contact(self, c: Contact) -> None:
+        self.marker.data = {"psi": [c.psi], "ratio": [c.impulse_ratio]}
         psi = self.psi_grid(c.psi)
+        key = (c.tau0, self.log, psi[0], psi[-1])
+        if key == self._shown:
+            return
+        self._shown = key
         ratio = np.asarray(impulse_ratio(psi, c.tau0), float)
         self.source.data = {"psi": psi, "ratio": ratio}
         fig = self.figure
@@ -399,4 +408,3 @@ class ImpulseScene(Scene):
         else:
             fig.x_range.start, fig.x_range.end = 0.0, psi[-1]
         fig.y_range.start, fig.y_range.end = 0.0, 1.05 * max(float(ratio.max()), 1e-9)
-        self.marker.data = {"psi": [c.psi], "ratio": [c.impulse_ratio]}

@@ -143,7 +143,19 @@ def test_log_psi_axis_reaches_1e6(ex: Explorer) -> None:
 def test_large_psi_in_linear_mode_extends_the_axis(ex: Explorer) -> None:
     ex.psi_slider.value = 100.0
     psi = np.asarray(ex.impulse.source.data["psi"])
-    assert psi.max() >= 100.0 and 100.0 in psi
+    assert psi.max() >= 100.0 and 1.0 in psi
+    assert ex.impulse.marker.data == {"psi": [100.0], "ratio": [contact_of(ex).impulse_ratio]}
+
+
+def test_moving_psi_sends_only_the_impulse_marker(ex: Explorer) -> None:
+    """The impulse curve depends on tau0 only: a psi move must not recompute it."""
+    curve = ex.impulse.source.data
+    ex.psi_slider.value = 3.0
+    assert ex.impulse.source.data is curve
+    assert ex.impulse.marker.data["psi"] == [3.0]
+    ex.tau0_slider.value = 0.3
+    assert ex.impulse.source.data is not curve
+    assert_sources_match_core(ex)
 
 
 @pytest.mark.parametrize("name", list(PRESETS))
