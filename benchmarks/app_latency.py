@@ -28,7 +28,8 @@ from explorer_browser import (  # noqa: E402
     open_explorer,
 )
 
-SOURCES = ["traction", "disc", "force", "impulse", "radii", "motion"]
+#: What a psi move changes (the impulse curve itself depends on tau0 only: its marker).
+SOURCES = ["traction", "disc", "force", "impulse_marker", "radii", "motion"]
 
 #: Arms a one-shot measurement: t0 at the next keydown, done when every source changed
 #: and two animation frames (a paint) have passed.
@@ -99,6 +100,8 @@ def measure(url: str, moves: int, seconds: float) -> dict[str, float]:
         page.get_by_role("button", name="⏸ Pause").click()
         browser.close()
     ok = sorted(t for t in times if t == t)
+    if not ok:
+        raise SystemExit(f"no slider move updated all of {SOURCES} within 15 s")
     return {
         "moves": len(ok),
         "median_ms": statistics.median(ok),
