@@ -7,10 +7,11 @@ contact, and (``core.numerics``) independent numerical methods for the same prob
     0.75
 """
 
-from core.contact import PSI_MAX, Contact, impulse_ratio
+from core.contact import Contact, impulse_ratio
 from core.coulomb import CoulombReport, coulomb_certificate
 from core.physical import MATERIALS, PhysicalInputs, Scales
 from core.tangential import PHASE_NAMES, Phase
+from core.validation import PSI_MAX
 
 __all__ = [
     "MATERIALS",

@@ -14,9 +14,8 @@ from core import hertz, kinematics, tangential
 from core.clock import clock, half_width
 from core.elliptic import impulse_factor
 from core.physical import PhysicalInputs, Scales
-from core.validation import check_real
+from core.validation import PSI_MAX, check_param
 
-PSI_MAX = 1e12
 MAX_GRID = 10**8
 
 
@@ -45,16 +44,8 @@ class Contact:
     scales: Scales | None = field(default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        checks = {
-            "psi": check_real("psi", self.psi, 0.0, PSI_MAX),
-            "tau0": check_real(
-                "tau0", self.tau0, -math.pi / 2, math.pi / 2, lo_open=True, hi_open=True
-            ),
-            "mu": check_real("mu", self.mu, 0.0, lo_open=True),
-            "nu": check_real("nu", self.nu, -1.0, 0.5, lo_open=True),
-        }
-        for name, value in checks.items():
-            object.__setattr__(self, name, value)
+        for name in ("psi", "tau0", "mu", "nu"):
+            object.__setattr__(self, name, check_param(name, getattr(self, name)))
 
     @classmethod
     def from_physical(
@@ -211,9 +202,9 @@ def impulse_ratio(
     Independent of mu and nu (accepted for symmetry with ``Contact``). psi is validated
     element-wise (finite, in [0, 1e12]).
     """
-    tau0 = check_real("tau0", tau0, -math.pi / 2, math.pi / 2, lo_open=True, hi_open=True)
-    check_real("mu", mu, 0.0, lo_open=True)
-    check_real("nu", nu, -1.0, 0.5, lo_open=True)
+    tau0 = check_param("tau0", tau0)
+    check_param("mu", mu)
+    check_param("nu", nu)
     psi = np.asarray(psi, dtype=float)
     bad = ~np.isfinite(psi) | (psi < 0.0) | (psi > PSI_MAX)
     if bad.any():

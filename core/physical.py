@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from core.validation import check_real
+from core.validation import check_param, check_real
 
 SQRT8 = 2.0 * math.sqrt(2.0)
 
@@ -46,8 +46,8 @@ class PhysicalInputs:
             object.__setattr__(
                 self, name, check_real(name, getattr(self, name), lo, lo_open=lo_open)
             )
-        object.__setattr__(self, "nu", check_real("nu", self.nu, -1.0, 0.5, lo_open=True))
-        object.__setattr__(self, "mu", check_real("mu", self.mu, 0.0, lo_open=True))
+        for name in ("nu", "mu"):
+            object.__setattr__(self, name, check_param(name, getattr(self, name)))
         h = check_real("h", self.h)
         if not -self.H < h < self.H:
             raise ValueError(

@@ -102,9 +102,10 @@ def tangential_force(w: NDArray[np.float64], psi: float, sin_half_e: float) -> N
         return t
     unloading = w > 0.0
     np.negative(t, out=t, where=unloading)
-    partial = unloading & (w < float(stick_clock(psi)))
+    k = float(stick_clock(psi))
+    partial = unloading & (w < k)
     if partial.any():
-        t[partial] += 2.0 * cube(one_minus_square(w[partial] / float(stick_clock(psi))))
+        t[partial] += 2.0 * cube(one_minus_square(w[partial] / k))
     t *= scale
     return t
 
@@ -128,22 +129,20 @@ def impulse_ratio(psi: ArrayLike, sin_half_e: float, cos_half_e: float) -> NDArr
     psi <= 1: psi. psi > 1: ((psi+1)/2)^(3/2) F(tau1)/F(tau0) = k J(k^2 m0) / J(m0) with
     m0 = sin^2(e/2) and J of ``core.elliptic`` (F = 12 m^2 J), free of cancellation.
     """
-    if np.ndim(psi) == 0:
+    m0, mc0 = sin_half_e**2, cos_half_e**2
+    if np.ndim(psi) == 0:  # one contact: no masks (quartic_integral has a scalar path too)
         p = float(psi)
-        if p <= 1.0:
-            return np.asarray(p)
-        k2 = 2.0 / (p + 1.0)
-        m0, mc0 = sin_half_e**2, cos_half_e**2
-        j1 = quartic_integral(k2 * m0, (p - 1.0) / (p + 1.0) + k2 * mc0)
-        return np.sqrt(k2) * j1 / quartic_integral(m0, mc0)
+        return np.asarray(p if p <= 1.0 else _ratio_above_one(p, m0, mc0))
     psi = np.asarray(psi, dtype=float)
     out = psi.copy()
     big = psi > 1.0
     if big.any():
-        p = psi[big]
-        k2 = 2.0 / (p + 1.0)
-        m0, mc0 = sin_half_e**2, cos_half_e**2
-        j0 = quartic_integral(m0, mc0)
-        j1 = quartic_integral(k2 * m0, (p - 1.0) / (p + 1.0) + k2 * mc0)
-        out[big] = np.sqrt(k2) * j1 / j0
+        out[big] = _ratio_above_one(psi[big], m0, mc0)
     return out
+
+
+def _ratio_above_one(psi: ArrayLike, m0: float, mc0: float) -> NDArray[np.float64]:
+    """k J(k^2 m0) / J(m0) for psi > 1, with 1 - k^2 m0 formed without cancellation."""
+    k2 = 2.0 / (psi + 1.0)
+    j1 = quartic_integral(k2 * m0, (psi - 1.0) / (psi + 1.0) + k2 * mc0)
+    return np.sqrt(k2) * j1 / quartic_integral(m0, mc0)

@@ -39,3 +39,19 @@ def check_real(
             raise ValueError(f"{name} must be a finite number in {allowed}, got {v!r}")
         raise ValueError(f"{name} = {v!r} is outside the allowed range {allowed}")
     return v
+
+
+#: The domain of the dimensionless parameters: (lo, hi, lo_open, hi_open).
+PSI_MAX = 1e12
+DOMAIN: dict[str, tuple[float | None, float | None, bool, bool]] = {
+    "psi": (0.0, PSI_MAX, False, False),
+    "tau0": (-math.pi / 2, math.pi / 2, True, True),
+    "mu": (0.0, None, True, False),
+    "nu": (-1.0, 0.5, True, False),
+}
+
+
+def check_param(name: str, value: object) -> float:
+    """``check_real`` against the domain of the parameter ``name`` (see ``DOMAIN``)."""
+    lo, hi, lo_open, hi_open = DOMAIN[name]
+    return check_real(name, value, lo, hi, lo_open=lo_open, hi_open=hi_open)
