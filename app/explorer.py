@@ -10,10 +10,12 @@ depends on tau.  All changes of one step are sent to the browser in one message
 
 from __future__ import annotations
 
+import contextlib
 import html
 import io
 import math
 import time
+from collections.abc import Iterator
 from urllib.parse import urlencode
 
 import numpy as np
@@ -85,7 +87,7 @@ class Explorer:
                                     self.radii, self.motion]
         self.methods = MethodsScene()
         self.player = Player(self.traction, self.disc, [self.force, self.radii, self.motion],
-                             self.traction.caption, self.traction.figure)
+                             self.traction.caption, self.traction.figure, self._now_texts)
         self._play_start = (0.0, 0.0)  # (progress, time.monotonic()) when play last started
 
         self._build_widgets()
@@ -155,13 +157,19 @@ class Explorer:
         self.preset_select.value = self.state.preset
         self.refresh()
 
-    def _set_silently(self, **values) -> None:
-        """Update state without triggering the per-change recomputation."""
+    @contextlib.contextmanager
+    def _silently(self) -> Iterator[None]:
+        """Changes made inside do not trigger the per-change recomputation."""
         self._syncing = True
         try:
-            self.state.param.update(**values)
+            yield
         finally:
             self._syncing = False
+
+    def _set_silently(self, **values) -> None:
+        """Update state without triggering the per-change recomputation."""
+        with self._silently():
+            self.state.param.update(**values)
 
     def _on_tau(self, *events) -> None:
         if self._syncing:
@@ -184,11 +192,8 @@ class Explorer:
             self._move_scrubber(tau)
 
     def _move_scrubber(self, tau: float) -> None:
-        self._syncing = True
-        try:
+        with self._silently():
             self.tau_slider.value = tau
-        finally:
-            self._syncing = False
 
     def _show_formulas(self, c: Contact, tau: float) -> None:
         phase = int(np.asarray(c.phase(tau)).reshape(-1)[0])
@@ -237,8 +242,7 @@ class Explorer:
         """(Re)start the browser's player at `progress` with the current contact and speed."""
         c = self.contact
         self._play_start = (progress, time.monotonic())
-        self.player.play(c, progress, self.state.speed, CONTACT_SECONDS,
-                         self._now_texts(c, frame_taus(c)))
+        self.player.play(c, progress, self.state.speed, CONTACT_SECONDS)
 
     def _tick(self) -> None:
         """Slow server tick while playing: scrubber, formulas and state follow the clock."""

@@ -13,6 +13,7 @@ the tau a pause lands on.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 from bokeh.models import ColumnDataSource, CustomJS, Label
@@ -81,8 +82,11 @@ class Player:
     """The frame store and the script that plays it in the browser."""
 
     def __init__(self, traction: TractionScene, disc: DiscScene, curves: list[CurveScene],
-                 caption: Label, title_figure: Figure) -> None:
+                 caption: Label, title_figure: Figure,
+                 captions: Callable[[Contact, np.ndarray], list[str]]) -> None:
+        """``captions(c, taus)`` gives the caption text of each frame."""
         self.traction, self.disc, self.curves = traction, disc, curves
+        self.captions = captions
         self.frames = ColumnDataSource(data={}, name="frames")
         self.profiles = ColumnDataSource(data={}, name="frame_profiles")
         # referenced from a figure, so that both sources are part of the document
@@ -94,8 +98,7 @@ class Player:
             "caption": caption, "title": title_figure.title,
         }, code=_PLAY_JS))
 
-    def play(self, c: Contact, start: float, speed: float, seconds: float,
-             captions: list[str]) -> None:
+    def play(self, c: Contact, start: float, speed: float, seconds: float) -> None:
         """Send the frames of contact `c` and start the browser's player at progress
         `start` in [0, 1) (profiles first: the script starts on the frames' arrival)."""
         taus = frame_taus(c)
@@ -107,7 +110,7 @@ class Player:
             "phase": phases,
             "disc_color": [DiscScene.slip_color(int(p)) for p in phases],
             "disc_label": ["counter-slip" if p in (3, 4) else "slip" for p in phases],
-            "caption": captions,
+            "caption": self.captions(c, taus),
             **{k: [s[k] for s in styles] for k in ("title", "title_color")},
             **{f"{s.name}:{col}": v for s in self.curves for col, v in s.columns(c, taus).items()},
         }
