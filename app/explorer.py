@@ -11,7 +11,6 @@ depends on tau.  All changes of one step are sent to the browser in one message
 from __future__ import annotations
 
 import contextlib
-import html
 import io
 import math
 import time
@@ -20,9 +19,9 @@ from urllib.parse import urlencode
 
 import numpy as np
 import panel as pn
-from bokeh.models import Div, InlineStyleSheet
 from panel.io import hold
 
+from app import browser
 from app.formulas import formulas
 from app.methods import MethodsScene
 from app.player import Player, frame_index, frame_taus
@@ -33,21 +32,17 @@ from app.scenes import (
     ImpulseScene,
     MotionScene,
     RadiiScene,
+    ReadoutScene,
     Scene,
     TractionScene,
 )
 from app.state import PRESETS, ExplorerState, parse_query
+from app.widgets import PromptEditableFloatSlider
 from core import Contact
 
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
 SLOW_UPDATE_S = 0.5  # while playing, the server moves scrubber and formulas this often (s)
 
-#: The derived-quantities table.
-READOUT_CSS = """
-table { border-collapse: collapse; font-size: 1rem; }
-th, td { border: 1px solid #bbb; padding: 0.25em 0.6em; text-align: left; }
-th { background: #f3f3f3; }
-"""
 
 #: Colour key of the contact disc (the figure has no legend, see DiscScene).
 DISC_KEY = " ".join(
@@ -85,6 +80,7 @@ class Explorer:
         self.motion = MotionScene()
         self.scenes: list[Scene] = [self.traction, self.disc, self.force, self.impulse,
                                     self.radii, self.motion]
+        self.readout = ReadoutScene()
         self.methods = MethodsScene()
         self.player = Player(self.traction, self.disc, [self.force, self.radii, self.motion],
                              self.traction.caption, self.traction.figure, self._now_texts)
@@ -98,6 +94,7 @@ class Explorer:
         self.state.param.watch(self._on_playing, ["playing"])
         self.state.param.watch(self._on_speed, ["speed"])
         self.impulse.set_log(self.state.log_psi)
+        self.impulse_pane = pn.pane.Bokeh(self.impulse.figure, sizing_mode="stretch_width")
         self.refresh()
 
     # ------------------------------------------------------------------ state
@@ -124,11 +121,10 @@ class Explorer:
             family = preset.family if preset else ()
             self.force.set_family([Contact(p, c.tau0, mu=c.mu, nu=c.nu) for p in family])
             self.tau_slider.param.update(start=c.tau0, end=c.tau_end, value=tau)
-            self.readout.text = self._readout_text(c)
+            self.readout.show(self.readout_rows(c))
             self._show_formulas(c, tau)
             self.traction.caption.text = self._now_text(c, tau)
             self.methods.update_contact(c)
-            self.downloads_filename()
             if self.state.playing:  # the player goes on with the new contact's frames
                 self._start_player(self._progress_of(tau))
         self._write_url()
@@ -205,6 +201,7 @@ class Explorer:
         self.impulse.set_log(event.new)
         with hold():
             self.impulse.update_contact(self.contact)
+            self.impulse_pane.object = self.impulse.figure
         self._write_url()
 
     # -------------------------------------------------------------- animation
@@ -281,21 +278,21 @@ class Explorer:
 
     def _build_widgets(self) -> None:
         s = self.state
-        self.psi_slider = pn.widgets.EditableFloatSlider.from_param(
+        self.psi_slider = PromptEditableFloatSlider.from_param(
             s.param.psi, label="ψ = tan θ / tan θ₀", start=0.05, end=30.0, step=0.01,
             fixed_start=1e-6, fixed_end=1e6, format="0[.]000")
-        self.tau0_slider = pn.widgets.EditableFloatSlider.from_param(
+        self.tau0_slider = PromptEditableFloatSlider.from_param(
             s.param.tau0, label="τ₀ (rad): contact starts", start=-1.5, end=1.5, step=0.005,
             fixed_start=-1.5, fixed_end=1.5, format="0[.]0000")
-        self.mu_slider = pn.widgets.EditableFloatSlider.from_param(
+        self.mu_slider = PromptEditableFloatSlider.from_param(
             s.param.mu, label="μ friction", start=0.01, end=1.0, step=0.01, fixed_start=1e-3,
             fixed_end=2.0, format="0[.]000")
-        self.nu_slider = pn.widgets.EditableFloatSlider.from_param(
+        self.nu_slider = PromptEditableFloatSlider.from_param(
             s.param.nu, label="ν Poisson ratio", start=0.0, end=0.49, step=0.01,
             fixed_start=0.0, fixed_end=0.499, format="0[.]000")
         # not bound with from_param: while playing it is refreshed only every
         # SLOW_UPDATE_S, to spare the browser a widget re-render per frame
-        self.tau_slider = pn.widgets.EditableFloatSlider(
+        self.tau_slider = PromptEditableFloatSlider(
             label="τ = ωt (rad): time", value=s.tau, start=self.contact.tau0,
             end=self.contact.tau_end, step=0.002, format="0[.]0000")
         self.tau_slider.param.watch(lambda e: setattr(s, "tau", e.new), "value")
@@ -331,11 +328,6 @@ class Explorer:
         self.message = pn.pane.Alert("", alert_type="warning", visible=False,
                                      sizing_mode="stretch_width", name="query_message")
         self.show_messages(self.messages)
-        # a plain Bokeh Div: Panel's Markdown and HTML panes re-send their stylesheets
-        # with every new text, and each restyle makes the browser recompute the styles
-        # of the whole page (~100 ms a slider move here)
-        self.readout = Div(text="", sizing_mode="stretch_width", name="readout",
-                           stylesheets=[InlineStyleSheet(css=READOUT_CSS)])
         self.formulas = pn.pane.Markdown("", sizing_mode="stretch_width")
         self.downloads = {
             key: pn.widgets.FileDownload(callback=lambda key=key: self.csv_file(key),
@@ -361,7 +353,9 @@ class Explorer:
         if text != self.message.object or self.message.visible != bool(messages):
             self.message.param.update(object=text, visible=bool(messages))
 
-    def _readout_text(self, c: Contact) -> str:
+    @staticmethod
+    def readout_rows(c: Contact) -> list[tuple[str, str]]:
+        """The derived quantities shown: (quantity, value) pairs."""
         rows = [
             ("θ (incidence angle)", f"{math.degrees(c.theta):.3f}°"),
             ("θ₀ (critical angle)", f"{math.degrees(c.theta0):.3f}°"),
@@ -382,9 +376,7 @@ class Explorer:
                 ("tangential impulse", f"{sc.tangential_impulse:.4g} N·s"),
                 ("period 2π/ω", f"{sc.period * 1e6:.4g} µs"),
             ]
-        body = "".join(f"<tr><td>{html.escape(k)}</td><td>{html.escape(v)}</td></tr>"
-                       for k, v in rows)
-        return f"<table><tr><th>quantity</th><th>value</th></tr>{body}</table>"
+        return rows
 
     def _now_text(self, c: Contact, tau: float) -> str:
         return self._now_texts(c, np.array([tau]))[0]
@@ -434,16 +426,19 @@ class Explorer:
         np.savetxt(out, body, delimiter=",", header=",".join(names), comments="", fmt="%.10g")
         return out.getvalue()
 
-    def csv_file(self, key: str) -> io.StringIO:
-        """The CSV as a file object, for `pn.widgets.FileDownload`."""
-        return io.StringIO(self.csv_text(key))
-
-    def downloads_filename(self) -> None:
-        """Name the CSV files after the parameters they hold."""
+    def csv_filename(self, key: str) -> str:
+        """The CSV file's name, after the parameters it holds."""
         c = self.contact
-        tag = f"psi{c.psi:.4g}_tau0{c.tau0:.4g}_mu{c.mu:g}_nu{c.nu:g}"
-        for key, widget in self.downloads.items():
-            widget.filename = f"zharii_{key}_{tag}.csv"
+        return f"zharii_{key}_psi{c.psi:.4g}_tau0{c.tau0:.4g}_mu{c.mu:g}_nu{c.nu:g}.csv"
+
+    def csv_file(self, key: str) -> io.StringIO:
+        """The CSV as a file object, for `pn.widgets.FileDownload` (called on a click).
+
+        The download is named here, when it is made, not on every parameter change:
+        renaming the buttons' files would re-render them in the browser per slider move.
+        """
+        self.downloads[key].filename = self.csv_filename(key)
+        return io.StringIO(self.csv_text(key))
 
     def _write_url(self) -> None:
         loc = pn.state.location
@@ -477,13 +472,11 @@ class Explorer:
                 card(pn.pane.Bokeh(self.disc.figure), pn.pane.HTML(DISC_KEY),
                      title="Contact disc", flex="0 0 380px"),
                 card(self.formulas, title="Formulas of the current phase", flex="2 1 480px"),
-                card(pn.pane.Bokeh(self.readout, sizing_mode="stretch_width"),
+                card(pn.pane.Bokeh(self.readout.figure, sizing_mode="stretch_width"),
                      title="Derived quantities", flex="1 1 380px"),
                 card(pn.pane.Bokeh(self.force.figure, sizing_mode="stretch_width"),
                      title="T(τ) (Fig. 7)"),
-                card(pn.pane.Bokeh(self.impulse.linear_figure, sizing_mode="stretch_width"),
-                     pn.pane.Bokeh(self.impulse.log_figure, sizing_mode="stretch_width"),
-                     title="Impulse (Fig. 8)"),
+                card(self.impulse_pane, title="Impulse (Fig. 8)"),
                 card(pn.pane.Bokeh(self.radii.figure, sizing_mode="stretch_width"),
                      title="Radii (Fig. 4b)"),
                 card(pn.pane.Bokeh(self.motion.figure, sizing_mode="stretch_width"),
@@ -500,7 +493,10 @@ class Explorer:
 
     def servable(self) -> pn.template.BootstrapTemplate:
         """Mark the page servable (the `panel serve` entry point calls this)."""
-        return self.view().servable()
+        page = self.view().servable()
+        if pn.state.curdoc is not None:
+            browser.install(pn.state.curdoc)
+        return page
 
 
 def build_explorer(query: dict | None = None) -> Explorer:

@@ -20,6 +20,7 @@ import numpy as np
 import panel as pn
 from bokeh.models import ColorBar, ColumnDataSource, LogColorMapper, LogTicker, Range1d
 from bokeh.palettes import Viridis256
+from panel.io import hold
 
 from app.scenes import CURVE_POINTS, TOOLS, _figure, _style, fit_range
 from core import Contact
@@ -94,14 +95,33 @@ class MethodsScene:
         fig.legend.location = "bottom_left"
         _style(fig)
         self.figure = fig
+        # collapsed by default; while collapsed nothing here is computed or sent (a hidden
+        # plot whose data changes also makes the browser lay out the page again)
+        self.card = pn.Card(title="Methods: numerical schemes against the closed form",
+                            collapsed=True, sizing_mode="stretch_width", margin=6)
+        self.card.param.watch(self._on_collapsed, "collapsed")
+
+    @property
+    def shown(self) -> bool:
+        """Whether the scene is expanded (the closed form and live runs follow the
+        parameters only then)."""
+        return not self.card.collapsed
+
+    def _on_collapsed(self, event) -> None:
+        if not event.new and self._contact is not None:
+            with hold():
+                self.update_contact(self._contact)
 
     # ------------------------------------------------------------- live runs
 
     def update_contact(self, c: Contact) -> None:
-        """New parameters: redraw the closed form; rerun the methods if live."""
+        """New parameters: redraw the closed form; rerun the methods if live (only
+        while the scene is shown; expanding it catches up)."""
         self._contact = c
         if self._doc is None:
             self._doc = pn.state.curdoc
+        if not self.shown:
+            return
         tau = c.tau_grid(CURVE_POINTS)
         T = c.tangential_force(tau)
         self.exact.data = {"tau": tau, "T": T}
@@ -245,5 +265,5 @@ class MethodsScene:
             body += [pn.pane.Bokeh(f, sizing_mode="stretch_width") for f in charts]
         else:
             body.append(pn.pane.Markdown("_No benchmark results in benchmarks/results._"))
-        return pn.Card(*body, title="Methods: numerical schemes against the closed form",
-                       collapsed=True, sizing_mode="stretch_width", margin=6)
+        self.card.objects = body
+        return self.card

@@ -18,7 +18,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from bokeh.models import ColumnDataSource, Label, Range1d
+from bokeh.models import (
+    ColumnDataSource,
+    CustomJS,
+    GlyphRenderer,
+    Label,
+    Legend,
+    LegendItem,
+    Range1d,
+)
 from bokeh.plotting import figure
 
 from core import PHASE_NAMES, Contact, Phase, impulse_ratio
@@ -37,8 +45,9 @@ PHASE_COLORS: dict[int, str] = {
 }
 STICK_COLOR = PHASE_COLORS[1]
 LINE_COLORS = ("#000000", "#D55E00", "#0072B2", "#CC79A7", "#009E73")
-#: Bokeh level of everything that changes on an animation frame: the browser then
-#: repaints only the plot's overlay layer, not its axes, grid and legend.
+#: Bokeh level of everything that changes on an animation frame or a slider move: the
+#: browser then repaints only the plot's overlay layer, not its axes, grid and legend
+#: (repainting a legend restyles the page, which is what costs most in the browser).
 FRAME_LEVEL = "overlay"
 
 
@@ -61,17 +70,59 @@ def _style(fig) -> None:
         fig.legend.click_policy = "hide"
 
 
-def fit_range(rng: Range1d, *columns, pad: float = 0.06) -> None:
+def add_legend(fig, entries: list[tuple[str, list[GlyphRenderer]]], place: str = "right",
+               location: str = "top_left") -> Legend:
+    """A legend that the browser never repaints when the data change.
+
+    BokehJS repaints a legend whenever anything its entries refer to changes, data
+    included, and a legend repaint restyles the page (the costliest part of a slider
+    move).  So each entry shows an empty copy of its first renderer, and clicking it
+    hides or shows the real renderers: the copy's callback finds them by id, since a
+    reference to them would tie the legend to their data again.
+    """
+    items = []
+    for label, renderers in entries:
+        first = renderers[0]
+        proxy = fig.add_glyph(ColumnDataSource({k: [] for k in first.data_source.data}),
+                              first.glyph.clone())
+        ids = [r.id for r in renderers]
+        proxy.js_on_change("visible", CustomJS(code=(
+            f"for (const id of {ids!r}) {{\n"
+            "  const r = cb_obj.document.get_model_by_id(id);\n"
+            "  if (r != null) r.visible = cb_obj.visible;\n}")))
+        items.append(LegendItem(label=label, renderers=[proxy]))
+    legend = Legend(items=items, location=location, click_policy="hide")
+    fig.add_layout(legend, place)
+    return legend
+
+
+def nice_step(span: float, parts: int = 10) -> float:
+    """The 1-2-5 x 10^k step nearest above span / parts (span > 0)."""
+    raw = span / parts
+    k = math.floor(math.log10(raw))
+    f = raw / 10.0**k
+    return next(m for m in (1.0, 2.0, 5.0, 10.0) if f <= m * (1 + 1e-12)) * 10.0**k
+
+
+def fit_range(rng: Range1d, *columns, pad: float = 0.06, snap: bool = False) -> None:
     """Set a fixed range around the finite values of `columns`.
 
     Ranges are explicit (not auto-ranged) so that moving a marker never makes the
-    browser lay the plot out again: only the data of a frame changes.
+    browser lay the plot out again: only the data of a frame changes.  With `snap` the
+    ends are rounded outwards to a multiple of a 1-2-5 step of about a tenth of the
+    span, so that a small parameter move usually leaves the range (and the axes, which
+    the browser would otherwise redraw) as they were.
     """
     values = np.concatenate([np.ravel(np.asarray(c, float)) for c in columns])
     values = values[np.isfinite(values)]
     lo, hi = (float(values.min()), float(values.max())) if values.size else (0.0, 1.0)
     margin = pad * (hi - lo) if hi > lo else 0.5
-    rng.start, rng.end = lo - margin, hi + margin
+    lo, hi = lo - margin, hi + margin
+    if snap:
+        step = nice_step(hi - lo)
+        lo, hi = math.floor(lo / step) * step, math.ceil(hi / step) * step
+    if (rng.start, rng.end) != (lo, hi):
+        rng.start, rng.end = lo, hi
 
 
 def _figure(title: str, x_label: str, y_label: str, **kwargs):
@@ -112,15 +163,14 @@ class TractionScene(Scene):
         super().__init__({k: [] for k in ("r", "traction", "upper", "lower", "stick_lo",
                                           "stick_hi")})
         fig = _figure("Traction", "r / a*", "traction  τᵤ / (μ p*)")
-        fig.varea("r", "stick_lo", "stick_hi", source=self.source, fill_color=STICK_COLOR,
-                  fill_alpha=0.25, legend_label="stick zone", level=FRAME_LEVEL)
-        fig.line("r", "upper", source=self.source, line_dash="dashed", color="grey",
-                 line_width=2, legend_label="±μ p", level=FRAME_LEVEL)
-        fig.line("r", "lower", source=self.source, line_dash="dashed", color="grey",
-                 line_width=2, level=FRAME_LEVEL)
+        stick = fig.varea("r", "stick_lo", "stick_hi", source=self.source,
+                          fill_color=STICK_COLOR, fill_alpha=0.25, level=FRAME_LEVEL)
+        envelope = [fig.line("r", col, source=self.source, line_dash="dashed", color="grey",
+                             line_width=2, level=FRAME_LEVEL) for col in ("upper", "lower")]
         self.line = fig.line("r", "traction", source=self.source, color="black", line_width=3,
-                             legend_label="τᵤ", level=FRAME_LEVEL)
-        fig.legend.location = "top_left"
+                             level=FRAME_LEVEL)
+        add_legend(fig, [("stick zone", [stick]), ("±μ p", envelope), ("τᵤ", [self.line])],
+                   place="center")
         # values at the current tau, drawn on the canvas: a text pane beside the plot
         # would make the browser lay out the whole page again on every frame
         self.caption = Label(x=0, y=0, text="", text_align="right", text_baseline="top",
@@ -228,9 +278,12 @@ class CurveScene(Scene):
         self.marker = ColumnDataSource({"x": [], "y": [], "color": [], "lo": [], "hi": []},
                                        name=f"{self.name}_marker")
         fig = _figure(self.title, "τ = ωt (rad)", self.y_label)
-        for col, label, color, dash in self.curves:
-            fig.line("tau", col, source=self.source, color=color, line_width=3, line_dash=dash,
-                     legend_label=label)
+        lines = [fig.line("tau", col, source=self.source, color=color, line_width=3,
+                          line_dash=dash, level=FRAME_LEVEL, name=f"{self.name}_{col}")
+                 for col, _, color, dash in self.curves]
+        # the curves are drawn above the legend's level, so the legend goes beside them
+        add_legend(fig, [(label, [line]) for (_, label, *_), line
+                         in zip(self.curves, lines, strict=True)])
         fig.scatter("x", "y", source=self.marker, size=13, color="color", line_color="black",
                     level=FRAME_LEVEL)
         # the cursor at the current tau is drawn from the marker's own source, so that a
@@ -250,7 +303,7 @@ class CurveScene(Scene):
         columns = self.columns(c, tau)
         self.source.data = {"tau": tau, **columns}
         fit_range(self.figure.x_range, tau, pad=0.02)
-        fit_range(self.figure.y_range, *columns.values())
+        fit_range(self.figure.y_range, *columns.values(), pad=0.03, snap=True)
 
     def update_tau(self, c: Contact, tau: float) -> None:
         values = self.columns(c, np.array([tau]))
@@ -281,16 +334,22 @@ class ForceScene(CurveScene):
         super().__init__()
         self.family = ColumnDataSource({"xs": [], "ys": [], "label": [], "color": []},
                                        name="force_family")
+        self._family: list[tuple] = []
         self.figure.multi_line("xs", "ys", source=self.family, color="color", line_width=2,
                                line_alpha=0.7, legend_field="label")
-        self.figure.legend.location = "bottom_left"
 
     def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
         n = c.normal_force(tau)  # P / P0 = mu P / T0
         return {"T": c.tangential_force(tau), "muP": n, "neg_muP": -n}
 
     def set_family(self, contacts: list[Contact]) -> None:
-        """Overlay T / T0 of further contacts (the paper's Fig. 7 families)."""
+        """Overlay T / T0 of further contacts (the paper's Fig. 7 families).
+
+        An unchanged family is not sent again."""
+        key = [(c.psi, c.tau0, c.mu, c.nu) for c in contacts]
+        if key == self._family:
+            return
+        self._family = key
         grids = [c.tau_grid(CURVE_POINTS) for c in contacts]
         self.family.data = {
             "xs": grids,
@@ -312,10 +371,6 @@ class RadiiScene(CurveScene):
         ("b", "b / a*", "#009E73", "solid"),
     )
 
-    def __init__(self) -> None:
-        super().__init__()
-        self.figure.legend.location = "top_left"
-
     def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
         return {"approach": c.approach(tau), "a": c.contact_radius(tau),
                 "b": c.stick_radius(tau)}
@@ -334,10 +389,6 @@ class MotionScene(CurveScene):
         ("drive_u", "u₀ₓ / u₀", "#0072B2", "dotted"),
     )
 
-    def __init__(self) -> None:
-        super().__init__()
-        self.figure.legend.location = "bottom_left"
-
     def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
         return {"v2": c.centre_velocity(tau), "u2": c.centre_displacement(tau),
                 "drive_v": c.drive_velocity(tau), "drive_u": c.drive_displacement(tau)}
@@ -347,7 +398,9 @@ class ImpulseScene(Scene):
     """Fig. 8: T_imp / (mu P_imp) against psi at the current tau0, current psi marked.
 
     Two figures share the source: a linear psi axis (0 to 30, the paper's range) and a
-    logarithmic one reaching psi = 1e6; `set_log` shows one of them.
+    logarithmic one reaching psi = 1e6; `set_log` picks the one in `figure`, which the
+    page shows (the other is not in the page at all: a hidden plot whose data changes
+    still makes the browser lay out the page again).
     """
 
     name = "impulse"
@@ -361,7 +414,6 @@ class ImpulseScene(Scene):
         self._shown: tuple = ()  # (tau0, log, first psi, last psi) of the curve shown
         self.linear_figure = self._make("linear")
         self.log_figure = self._make("log")
-        self.log_figure.visible = False
         self.figure = self.linear_figure
 
     def _make(self, axis: str):
@@ -375,10 +427,8 @@ class ImpulseScene(Scene):
         return fig
 
     def set_log(self, log: bool) -> None:
-        """Show the log-psi figure (True) or the linear one (False)."""
+        """Pick the log-psi figure (True) or the linear one (False) as `figure`."""
         self.log = log
-        self.log_figure.visible = log
-        self.linear_figure.visible = not log
         self.figure = self.log_figure if log else self.linear_figure
 
     def psi_grid(self, psi: float) -> np.ndarray:
@@ -408,3 +458,41 @@ class ImpulseScene(Scene):
         else:
             fig.x_range.start, fig.x_range.end = 0.0, psi[-1]
         fig.y_range.start, fig.y_range.end = 0.0, 1.05 * max(float(ratio.max()), 1e-9)
+
+
+class ReadoutScene(Scene):
+    """The derived quantities as a two-column table drawn on a canvas.
+
+    A table of text in the page (an HTML pane, a Bokeh Div) makes the browser lay out
+    the whole page again whenever its text changes, ~50 ms per slider move; drawn as
+    text glyphs, new values only repaint this canvas.
+    """
+
+    name = "readout"
+    ROW_PX = 30  # height of a row (px)
+
+    def __init__(self) -> None:
+        super().__init__({"y": [], "quantity": [], "value": []})
+        self.rows = 0
+        fig = figure(height=self.ROW_PX, sizing_mode="stretch_width", min_width=300,
+                     x_range=Range1d(0, 1), y_range=Range1d(0, 1), toolbar_location=None,
+                     tools="", min_border=0, outline_line_color=None)
+        fig.axis.visible = False
+        fig.grid.visible = False
+        fig.hspan("y", source=self.source, line_color="#dddddd", line_width=1,
+                  level=FRAME_LEVEL)
+        for col, x, style in (("quantity", 0.02, "normal"), ("value", 0.58, "bold")):
+            fig.text(x, "y", text=col, source=self.source, text_baseline="top",
+                     text_font_size="13pt", text_font_style=style, y_offset=6,
+                     level=FRAME_LEVEL)
+        self.figure = fig
+
+    def show(self, rows: list[tuple[str, str]]) -> None:
+        """Show (quantity, value) rows, top to bottom."""
+        n = len(rows)
+        if n != self.rows:  # the table grows or shrinks only with the physical inputs
+            self.rows = n
+            self.figure.height = self.ROW_PX * max(n, 1)
+            self.figure.y_range.start, self.figure.y_range.end = 0, max(n, 1)
+        self.source.data = {"y": [float(n - i) for i in range(n)],
+                            "quantity": [k for k, _ in rows], "value": [v for _, v in rows]}

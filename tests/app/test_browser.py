@@ -60,6 +60,9 @@ def test_page_loads_without_console_errors_and_screenshot(browser, url) -> None:
     T = column(page, "force", "T")
     assert len(T) > 300 and max(T) > 0 > min(T)
     assert page.get_by_text("Partial stick (π/2 < τ < τ₁").is_visible()
+    # the stylesheet shim (app/browser.py) is installed
+    assert page.evaluate("() => Bokeh.require('core/dom').InlineStyleSheet"
+                         ".prototype.__zharii_skip_same") is True
     ARTIFACTS.mkdir(exist_ok=True)
     shot = ARTIFACTS / "explorer.png"
     page.screenshot(path=str(shot), full_page=True)
@@ -159,5 +162,20 @@ def test_phone_width_stacks_the_plots(browser, url) -> None:
     boxes = [page.locator(".bk-Canvas").nth(i).bounding_box() for i in range(3)]
     assert all(b is not None and b["x"] + b["width"] <= 420 for b in boxes), boxes
     page.screenshot(path=str(Path(ARTIFACTS, "explorer-phone.png")), full_page=True)
+    assert errors(console) == []
+    page.close()
+
+
+def test_legend_click_hides_the_curve(browser, url) -> None:
+    """Legend entries are empty proxies (app.scenes.add_legend); a click on one must
+    still hide the real curve, and a second click show it again."""
+    page, console = open_explorer(browser, url)
+    visible = "() => Bokeh.documents[0].get_model_by_name('motion_u2').visible"
+    assert page.evaluate(visible) is True
+    entry = page.get_by_text("u₂ / u₀", exact=True)
+    entry.click()
+    page.wait_for_function(f"() => !({visible})()", timeout=5000)
+    entry.click()
+    page.wait_for_function(visible, timeout=5000)
     assert errors(console) == []
     page.close()

@@ -5,17 +5,20 @@ Every plotted number must be exactly what `core` computes for the current state.
 
 from __future__ import annotations
 
+import base64
 import io
 import itertools
 import math
 
 import numpy as np
 import pytest
+from bokeh.document import Document
+from bokeh.models import Range1d
 
 import app.explorer
 from app.explorer import CONTACT_SECONDS, Explorer
 from app.player import frame_index, frame_taus
-from app.scenes import CURVE_POINTS, PROFILE_POINTS
+from app.scenes import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
 from app.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
 from core import PHASE_NAMES, Contact, impulse_ratio
 
@@ -109,8 +112,9 @@ def test_widget_change_recomputes_every_source(ex: Explorer, widget: str, value:
 def test_theta_readout_follows_mu_and_nu(ex: Explorer) -> None:
     ex.mu_slider.value = 0.5
     c = contact_of(ex)
-    assert f"{math.degrees(c.theta0):.3f}°" in ex.readout.text
-    assert f"{math.degrees(c.theta):.3f}°" in ex.readout.text
+    values = ex.readout.source.data["value"]
+    assert f"{math.degrees(c.theta0):.3f}°" in values
+    assert f"{math.degrees(c.theta):.3f}°" in values
 
 
 def test_tau_change_updates_only_tau_dependent_data(ex: Explorer) -> None:
@@ -134,10 +138,11 @@ def test_log_psi_axis_reaches_1e6(ex: Explorer) -> None:
     ex.log_box.value = True
     psi = np.asarray(ex.impulse.source.data["psi"])
     assert psi.min() <= 1e-3 and psi.max() >= 1e6 and 1.0 in psi
-    assert ex.impulse.log_figure.visible and not ex.impulse.linear_figure.visible
+    assert ex.impulse_pane.object is ex.impulse.log_figure
     assert_sources_match_core(ex)
     ex.log_box.value = False
     assert np.asarray(ex.impulse.source.data["psi"]).max() == pytest.approx(30.0)
+    assert ex.impulse_pane.object is ex.impulse.linear_figure
 
 
 def test_large_psi_in_linear_mode_extends_the_axis(ex: Explorer) -> None:
@@ -156,6 +161,65 @@ def test_moving_psi_sends_only_the_impulse_marker(ex: Explorer) -> None:
     ex.tau0_slider.value = 0.3
     assert ex.impulse.source.data is not curve
     assert_sources_match_core(ex)
+
+
+def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> None:
+    """What a slider move sends decides the browser's work: new data for the plots that
+    show psi, the caption drawn on the traction canvas, and the slider's own number.
+    No text pane, no range, no title, no hidden plot (each makes the browser restyle or
+    lay out the page again; see docs/app.md)."""
+    doc = Document()
+    ex.view().server_doc(doc)
+    ex.psi_slider.value = 2.5  # leaves the preset: the preset menu changes this once
+    events = []
+    doc.on_change(events.append)
+    ex.psi_slider.value = 2.51
+    changed = {(type(e.model).__name__, e.model.name, getattr(e, "attr", "data"))
+               for e in events}
+    data = {("ColumnDataSource", n, "data") for n in (
+        "traction", "disc", "force", "force_marker", "impulse_marker", "radii",
+        "radii_marker", "motion", "motion_marker", "readout")}
+    assert changed == data | {("Label", "traction_caption", "text"),
+                              ("Slider", None, "value"), ("Spinner", None, "value")}
+
+
+def test_legend_entries_are_static_proxies_of_the_curves(ex: Explorer) -> None:
+    """A legend whose renderers' data change is repainted with them; the entries show
+    empty copies instead, whose click handler names the real curves by id only."""
+    fig = ex.motion.figure
+    (legend,) = fig.legend
+    for item, (col, label, color, _) in zip(legend.items, ex.motion.curves, strict=True):
+        (proxy,) = item.renderers
+        assert item.label.value == label
+        assert all(len(v) == 0 for v in proxy.data_source.data.values())
+        assert proxy.glyph.line_color == color
+        (callback,) = proxy.js_property_callbacks["change:visible"]
+        assert callback.args == {}
+        curve = fig.select_one({"name": f"motion_{col}"})
+        assert repr(curve.id) in callback.code
+        assert proxy.data_source is not ex.motion.source
+
+
+@pytest.mark.parametrize(("span", "step"), [(1.0, 0.1), (0.7, 0.1), (0.25, 0.05),
+                                            (0.11, 0.02), (3.0, 0.5), (1e-3, 1e-4)])
+def test_nice_step(span: float, step: float) -> None:
+    assert nice_step(span) == pytest.approx(step)
+
+
+def test_snapped_ranges_hold_the_data_and_stay_put_for_small_moves() -> None:
+    rng = Range1d(0, 1)
+    fit_range(rng, [-0.313, 0.352], snap=True)
+    assert rng.start <= -0.313 and rng.end >= 0.352
+    assert (rng.start, rng.end) == pytest.approx((-0.4, 0.4))
+    fit_range(rng, [-0.312, 0.353], snap=True)  # a small move: same range
+    assert (rng.start, rng.end) == pytest.approx((-0.4, 0.4))
+
+
+def test_radii_and_force_ranges_stay_put_for_a_psi_step(ex: Explorer) -> None:
+    before = [(f.y_range.start, f.y_range.end) for f in (ex.force.figure, ex.radii.figure)]
+    ex.psi_slider.value = ex.psi_slider.value + 0.01
+    after = [(f.y_range.start, f.y_range.end) for f in (ex.force.figure, ex.radii.figure)]
+    assert after == before
 
 
 @pytest.mark.parametrize("name", list(PRESETS))
@@ -274,8 +338,18 @@ def test_csv_traction_and_impulse(ex: Explorer) -> None:
     im = read_csv(ex.csv_text("impulse"))
     np.testing.assert_allclose(im["ratio"], impulse_ratio(im["psi"], ex.state.tau0),
                                rtol=1e-8, atol=1e-12)
-    assert ex.downloads["curves"].filename.startswith("zharii_curves_psi2.414")
     assert ex.downloads["impulse"].callback().read() == ex.csv_text("impulse")
+    assert ex.downloads["impulse"].filename == "zharii_impulse_psi2.414_tau00.5236_mu0.2_nu0.3.csv"
+
+
+def test_download_named_after_the_parameters_at_the_click(ex: Explorer) -> None:
+    ex.state.psi = 7.5
+    download = ex.downloads["curves"]
+    download._clicks += 1  # what a click in the browser does
+    assert download.filename.startswith("zharii_curves_psi7.5_")
+    head, b64 = download.data.split(",", 1)
+    assert head.endswith(";base64")
+    assert base64.b64decode(b64).decode() == ex.csv_text("curves")
 
 
 # --------------------------------------------------------------- animation
@@ -362,7 +436,7 @@ def test_physical_inputs_give_si_scales(ex: Explorer) -> None:
     assert (s.psi, s.tau0) == (c.psi, c.tau0)
     assert ex.psi_slider.disabled and ex.tau0_slider.disabled
     assert_sources_match_core(ex)
-    assert f"{c.scales.T0:.4g} N" in ex.readout.text
+    assert f"{c.scales.T0:.4g} N" in ex.readout.source.data["value"]
     table = read_csv(ex.csv_text("curves"))
     np.testing.assert_allclose(table["T_N"], table["T"] * c.scales.T0, rtol=1e-9)
     assert " N\na = " in ex.traction.caption.text
@@ -382,6 +456,7 @@ def test_invalid_physical_inputs_show_a_message(ex: Explorer) -> None:
 def test_methods_overlay_holds_what_numerics_computes(ex: Explorer) -> None:
     numerics = pytest.importorskip("core.numerics")
     ex.view()
+    ex.methods.card.collapsed = False
     ex.methods.choice.value = ["mdr"]  # runs synchronously outside a server
     c = contact_of(ex)
     res = numerics.solve("mdr", c, numerics.INTERACTIVE_RESOLUTION["mdr"])
@@ -396,6 +471,7 @@ def test_methods_overlay_holds_what_numerics_computes(ex: Explorer) -> None:
 
 def test_methods_rerun_live_after_a_change(ex: Explorer) -> None:
     pytest.importorskip("core.numerics")
+    ex.methods.card.collapsed = False
     ex.methods.choice.value = ["lammps_mindlin"]
     ex.methods.live.value = True
     ex.psi_slider.value = 0.5
@@ -403,6 +479,18 @@ def test_methods_rerun_live_after_a_change(ex: Explorer) -> None:
     x = ex.methods.source.data["ys"][0]
     ex.psi_slider.value = 5.0
     assert not np.array_equal(ex.methods.source.data["ys"][0][:50], x[:50])
+
+
+def test_methods_computes_nothing_while_collapsed(ex: Explorer) -> None:
+    assert ex.methods.card.collapsed and ex.methods.exact.data["T"] == []
+    ex.psi_slider.value = 5.0
+    assert ex.methods.exact.data["T"] == []
+    ex.methods.card.collapsed = False  # expanding catches up with the parameters
+    c = contact_of(ex)
+    eq(ex.methods.exact.data["T"], c.tangential_force(c.tau_grid(CURVE_POINTS)))
+    ex.psi_slider.value = 0.7
+    c = contact_of(ex)
+    eq(ex.methods.exact.data["T"], c.tangential_force(c.tau_grid(CURVE_POINTS)))
 
 
 def test_missing_numerics_shows_a_note(monkeypatch: pytest.MonkeyPatch) -> None:
