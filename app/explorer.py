@@ -15,6 +15,7 @@ import io
 import math
 import time
 from collections.abc import Iterator
+from functools import partial
 from urllib.parse import urlencode
 
 import numpy as np
@@ -42,6 +43,7 @@ from core import Contact
 
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
 SLOW_UPDATE_S = 0.5  # while playing, the server moves scrubber and formulas this often (s)
+URL_DELAY_S = 0.4  # the URL follows the parameters this long after the last change (s)
 
 
 #: Colour key of the contact disc (the figure has no legend, see DiscScene).
@@ -71,6 +73,8 @@ class Explorer:
         self._callback = None
         self._syncing = False
         self._shown_phase = -1
+        self._url_pending = False
+        self._url_due = 0.0
 
         self.traction = TractionScene()
         self.disc = DiscScene()
@@ -429,7 +433,7 @@ class Explorer:
     def csv_filename(self, key: str) -> str:
         """The CSV file's name, after the parameters it holds."""
         c = self.contact
-        return f"zharii_{key}_psi{c.psi:.4g}_tau0{c.tau0:.4g}_mu{c.mu:g}_nu{c.nu:g}.csv"
+        return f"zharii_{key}_psi{c.psi:.4g}_tau0_{c.tau0:.4g}_mu{c.mu:g}_nu{c.nu:g}.csv"
 
     def csv_file(self, key: str) -> io.StringIO:
         """The CSV as a file object, for `pn.widgets.FileDownload` (called on a click).
@@ -441,9 +445,31 @@ class Explorer:
         return io.StringIO(self.csv_text(key))
 
     def _write_url(self) -> None:
-        loc = pn.state.location
-        if loc is not None and pn.state.curdoc is not None:
+        """Put the parameters in the page's URL, URL_DELAY_S after the last change.
+
+        Every URL change is a round trip (the browser pushes the history entry and
+        reports the new location back); during a slider drag it would compete with the
+        plots for the browser, so a burst of changes writes the URL once, at its end.
+        """
+        loc, doc = pn.state.location, pn.state.curdoc
+        if loc is None or doc is None:
+            return
+        if doc.session_context is None:  # no server loop (tests): write at once
             loc.search = "?" + urlencode(self.state.query())
+            return
+        self._url_due = time.monotonic() + URL_DELAY_S
+        if not self._url_pending:
+            self._url_pending = True
+            doc.add_timeout_callback(partial(self._flush_url, loc, doc),
+                                     int(URL_DELAY_S * 1000))
+
+    def _flush_url(self, loc, doc) -> None:
+        wait = self._url_due - time.monotonic()
+        if wait > 0.005:  # changed again meanwhile: wait for the end of the burst
+            doc.add_timeout_callback(partial(self._flush_url, loc, doc), int(wait * 1000))
+            return
+        self._url_pending = False
+        loc.search = "?" + urlencode(self.state.query())
 
     def view(self) -> pn.template.BootstrapTemplate:
         """The page: controls in the sidebar, scenes in the main area."""

@@ -100,6 +100,9 @@ def test_keyboard_slider_changes_plot_data(browser, url) -> None:
     np.testing.assert_allclose(tau, c.tau_grid(CURVE_POINTS), rtol=1e-15)
     np.testing.assert_allclose(T, c.tangential_force(np.asarray(tau)), rtol=1e-12,
                                atol=1e-15)
+    # the URL follows (once, after the moves)
+    page.wait_for_function("(p) => location.search.includes('psi=' + p)", arg=f"{psi:.10g}",
+                           timeout=5000)
     assert errors(console) == []
     page.close()
 
@@ -152,7 +155,8 @@ def test_preset_loads(browser, url) -> None:
     page.wait_for_function("() => __col('impulse_marker', 'psi')[0] === 6.46", timeout=20_000)
     page.wait_for_function("() => (__col('force_family', 'label') || []).length === 3")
     assert column(page, "force_marker", "x")[0] == pytest.approx(math.pi / 2)
-    assert "preset=fig7b" in page.url
+    page.wait_for_function("() => location.search.includes('preset=fig7b')",
+                           timeout=5000)  # written once the changes settle
     assert errors(console) == []
     page.close()
 

@@ -339,7 +339,7 @@ def test_csv_traction_and_impulse(ex: Explorer) -> None:
     np.testing.assert_allclose(im["ratio"], impulse_ratio(im["psi"], ex.state.tau0),
                                rtol=1e-8, atol=1e-12)
     assert ex.downloads["impulse"].callback().read() == ex.csv_text("impulse")
-    assert ex.downloads["impulse"].filename == "zharii_impulse_psi2.414_tau00.5236_mu0.2_nu0.3.csv"
+    assert ex.downloads["impulse"].filename == "zharii_impulse_psi2.414_tau0_0.5236_mu0.2_nu0.3.csv"
 
 
 def test_download_named_after_the_parameters_at_the_click(ex: Explorer) -> None:
