@@ -95,6 +95,9 @@ def measure(url: str, moves: int, seconds: float) -> dict[str, float]:
                 times.append(ms)
             page.wait_for_timeout(250)
         page.get_by_role("button", name="▶ Play").click()
+        # the player starts when the contact's frames arrive
+        page.wait_for_function("() => (__col('frames', 'tau') || []).length > 0",
+                               timeout=15_000)
         page.wait_for_timeout(1000)
         fps = page.evaluate(JS_FPS, seconds * 1000)
         page.get_by_role("button", name="⏸ Pause").click()
