@@ -76,14 +76,15 @@ def add_legend(fig, entries: list[tuple[str, list[GlyphRenderer]]], place: str =
 
     BokehJS repaints a legend whenever anything its entries refer to changes, data
     included, and a legend repaint restyles the page (the costliest part of a slider
-    move).  So each entry shows an empty copy of its first renderer, and clicking it
+    move).  So each entry shows a copy of its first renderer holding one NaN point (drawn
+    nowhere; BokehJS draws no legend swatch for an empty renderer), and clicking it
     hides or shows the real renderers: the copy's callback finds them by id, since a
     reference to them would tie the legend to their data again.
     """
     items = []
     for label, renderers in entries:
         first = renderers[0]
-        proxy = fig.add_glyph(ColumnDataSource({k: [] for k in first.data_source.data}),
+        proxy = fig.add_glyph(ColumnDataSource({k: [math.nan] for k in first.data_source.data}),
                               first.glyph.clone())
         ids = [r.id for r in renderers]
         proxy.js_on_change("visible", CustomJS(code=(

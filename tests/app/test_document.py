@@ -191,7 +191,7 @@ def test_legend_entries_are_static_proxies_of_the_curves(ex: Explorer) -> None:
     for item, (col, label, color, _) in zip(legend.items, ex.motion.curves, strict=True):
         (proxy,) = item.renderers
         assert item.label.value == label
-        assert all(len(v) == 0 for v in proxy.data_source.data.values())
+        assert all(len(v) == 1 and math.isnan(v[0]) for v in proxy.data_source.data.values())
         assert proxy.glyph.line_color == color
         (callback,) = proxy.js_property_callbacks["change:visible"]
         assert callback.args == {}
