@@ -240,10 +240,16 @@ class Explorer:
         return float(frame_taus(self.contact)[frame_index(progress)])
 
     def _start_player(self, progress: float) -> None:
-        """(Re)start the browser's player at `progress` with the current contact and speed."""
+        """(Re)start the browser's player at `progress` with the current contact and speed.
+
+        The frames are Bokeh model changes made from a widget callback, which Panel runs
+        without the document lock: they must go through `hold()` (without it, a change
+        made while a message is being written raises in Bokeh and the player never
+        starts)."""
         c = self.contact
         self._play_start = (progress, time.monotonic())
-        self.player.play(c, progress, self.state.speed, CONTACT_SECONDS)
+        with hold():
+            self.player.play(c, progress, self.state.speed, CONTACT_SECONDS)
 
     def _tick(self) -> None:
         """Slow server tick while playing: scrubber, formulas and state follow the clock."""
@@ -273,7 +279,8 @@ class Explorer:
             if self._callback is not None and self._callback.running:
                 self._callback.stop()
             tau = self.clock_tau()
-            self.player.stop()
+            with hold():
+                self.player.stop()
             self._set_silently(tau=tau)
             self.update_tau()  # the plots settle on the frame the player was showing
             self._write_url()
