@@ -11,6 +11,7 @@ import itertools
 import math
 
 import numpy as np
+import panel as pn
 import pytest
 from bokeh.document import Document
 from bokeh.models import Range1d
@@ -181,6 +182,41 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
         "radii_marker", "motion", "motion_marker", "readout")}
     assert changed == data | {("Label", "traction_caption", "text"),
                               ("Slider", None, "value"), ("Spinner", None, "value")}
+
+
+class _RecordingDoc:
+    """Stands in for a served document: records how Panel schedules a browser change."""
+
+    session_context = object()
+
+    def __init__(self) -> None:
+        self.calls: list[tuple] = []
+
+    def add_timeout_callback(self, callback, ms) -> None:
+        self.calls.append(("timeout", ms))
+
+    def add_next_tick_callback(self, callback) -> None:
+        self.calls.append(("next_tick",))
+
+
+@pytest.mark.parametrize("widget", ["psi_slider", "tau0_slider", "mu_slider", "nu_slider",
+                                    "tau_slider"])
+def test_slider_moves_skip_panels_debounce(ex: Explorer, widget: str) -> None:
+    """A slider's value from the browser is handled on the next tick, not after Panel's
+    50 ms debounce (app/widgets.py); value_throttled keeps the wait, and so does a stock
+    Panel slider (the control)."""
+    inner = getattr(ex, widget)._slider
+    scheduled = {}
+    for attr in ("value", "value_throttled"):
+        doc = _RecordingDoc()
+        inner._events = {}
+        inner._server_change(doc, "ref", None, attr, inner.value, inner.value)
+        scheduled[attr] = doc.calls
+    assert scheduled == {"value": [("next_tick",)], "value_throttled": [("timeout", 50)]}
+    stock = pn.widgets.EditableFloatSlider(value=1.0, start=0.0, end=2.0)._slider
+    doc = _RecordingDoc()
+    stock._server_change(doc, "ref", None, "value", 1.0, 1.5)
+    assert doc.calls == [("timeout", 50)]
 
 
 def test_legend_entries_are_static_proxies_of_the_curves(ex: Explorer) -> None:
