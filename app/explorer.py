@@ -279,10 +279,10 @@ class Explorer:
             if self._callback is not None and self._callback.running:
                 self._callback.stop()
             tau = self.clock_tau()
-            with hold():
-                self.player.stop()
             self._set_silently(tau=tau)
-            self.update_tau()  # the plots settle on the frame the player was showing
+            with hold():  # one message: the player stops and the plots settle on its frame
+                self.player.stop()
+                self.update_tau()
             self._write_url()
 
     # ------------------------------------------------------------------- view

@@ -15,7 +15,6 @@ Scales: traction in mu p*, force in T0 (eq 37), radii in a*.
 
 from __future__ import annotations
 
-import math
 from enum import IntEnum
 
 import numpy as np
@@ -105,7 +104,7 @@ def tangential_force(w: NDArray[np.float64], psi: float, sin_half_e: float) -> N
     np.negative(t, out=t, where=unloading)
     # 2 b^3 in partial stick: b^2 = (1 - v)(1 + v) with v = w / k, clipped to 0 for
     # v >= 1 (counter-slip); v = 1 while loading makes it 0 there too (no masks needed)
-    v = np.divide(w, math.sqrt(2.0 / (psi + 1.0)), out=np.ones_like(w), where=unloading)
+    v = np.divide(w, float(stick_clock(psi)), out=np.ones_like(w), where=unloading)
     b3 = cube(one_minus_square(v))
     b3 *= 2.0
     t += b3
