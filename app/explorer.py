@@ -38,7 +38,7 @@ from app.scenes import (
     TractionScene,
 )
 from app.state import PRESETS, ExplorerState, parse_query
-from app.widgets import PromptEditableFloatSlider
+from app.widgets import ExactSlider
 from core import Contact
 
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
@@ -289,21 +289,23 @@ class Explorer:
 
     def _build_widgets(self) -> None:
         s = self.state
-        self.psi_slider = PromptEditableFloatSlider.from_param(
-            s.param.psi, label="ψ = tan θ / tan θ₀", start=0.05, end=30.0, step=0.01,
+        self.psi_slider = ExactSlider(
+            label="ψ = tan θ / tan θ₀", value=s.psi, start=0.05, end=30.0, step=0.01,
             fixed_start=1e-6, fixed_end=1e6, format="0[.]000")
-        self.tau0_slider = PromptEditableFloatSlider.from_param(
-            s.param.tau0, label="τ₀ (rad): contact starts", start=-1.5, end=1.5, step=0.005,
-            fixed_start=-1.5, fixed_end=1.5, format="0[.]0000")
-        self.mu_slider = PromptEditableFloatSlider.from_param(
-            s.param.mu, label="μ friction", start=0.01, end=1.0, step=0.01, fixed_start=1e-3,
-            fixed_end=2.0, format="0[.]000")
-        self.nu_slider = PromptEditableFloatSlider.from_param(
-            s.param.nu, label="ν Poisson ratio", start=0.0, end=0.49, step=0.01,
+        self.tau0_slider = ExactSlider(
+            label="τ₀ (rad): contact starts", value=s.tau0, start=-1.5, end=1.5,
+            step=0.005, fixed_start=-1.5, fixed_end=1.5, format="0[.]0000")
+        self.mu_slider = ExactSlider(
+            label="μ friction", value=s.mu, start=0.01, end=1.0, step=0.01,
+            fixed_start=1e-3, fixed_end=2.0, format="0[.]000")
+        self.nu_slider = ExactSlider(
+            label="ν Poisson ratio", value=s.nu, start=0.0, end=0.49, step=0.01,
             fixed_start=0.0, fixed_end=0.499, format="0[.]000")
-        # not bound with from_param: while playing it is refreshed only every
+        for name in ("psi", "tau0", "mu", "nu"):
+            self._bind(getattr(self, f"{name}_slider"), name)
+        # not bound both ways: while playing it is refreshed only every
         # SLOW_UPDATE_S, to spare the browser a widget re-render per frame
-        self.tau_slider = PromptEditableFloatSlider(
+        self.tau_slider = ExactSlider(
             label="τ = ωt (rad): time", value=s.tau, start=self.contact.tau0,
             end=self.contact.tau_end, step=0.002, format="0[.]0000")
         self.tau_slider.param.watch(lambda e: setattr(s, "tau", e.new), "value")
@@ -346,6 +348,11 @@ class Explorer:
                                          color="primary", width=150)
             for key in ("curves", "traction", "impulse")
         }
+
+    def _bind(self, widget: ExactSlider, name: str) -> None:
+        """Keep `widget.value` and `state.<name>` equal, whichever changes."""
+        widget.param.watch(lambda e: setattr(self.state, name, e.new), "value")
+        self.state.param.watch(lambda e: setattr(widget, "value", e.new), name)
 
     def _on_preset_select(self, event) -> None:
         if event.new and event.new != self.state.preset:

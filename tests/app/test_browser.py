@@ -107,6 +107,35 @@ def test_keyboard_slider_changes_plot_data(browser, url) -> None:
     page.close()
 
 
+def test_number_box_follows_the_slider_and_takes_exact_values(browser, url) -> None:
+    """The box shows each slider move (linked in the browser, no server echo); a value
+    typed in it, even beyond the slider's range, reaches the plots and the slider."""
+    page, console = open_explorer(browser, url)
+    box = page.locator("input.bk-input").first  # the psi box, above the psi slider
+    page.locator(".noUi-handle").first.focus()
+    psi0 = column(page, "impulse_marker", "psi")[0]
+    page.keyboard.press("ArrowRight")
+    page.wait_for_function("(v) => __col('impulse_marker', 'psi')[0] > v", arg=psi0,
+                           timeout=20_000)
+    psi = column(page, "impulse_marker", "psi")[0]
+    assert float(box.input_value()) == pytest.approx(psi, abs=5e-4)  # shown to 3 places
+    box.fill("250.5")
+    box.press("Enter")
+    page.wait_for_function("() => __col('impulse_marker', 'psi')[0] === 250.5",
+                           timeout=20_000)
+    T = column(page, "force", "T")
+    c = Contact(250.5, math.pi / 6)
+    np.testing.assert_allclose(T, c.tangential_force(c.tau_grid(CURVE_POINTS)),
+                               rtol=1e-12, atol=1e-15)
+    slider_end = page.evaluate("""() => {
+      const s = window.Bokeh.documents[0].all_models;
+      for (const m of s) if (m.type === "Slider" && m.value === 250.5) return m.end;
+      return null; }""")
+    assert slider_end == 250.5  # the slider widened to show it
+    assert errors(console) == []
+    page.close()
+
+
 @pytest.mark.smoke
 def test_bad_query_shows_message_and_falls_back(browser, url) -> None:
     page, console = open_explorer(browser, f"{url}?psi=banana&tau0=9")
