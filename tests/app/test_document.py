@@ -184,7 +184,7 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
         "radii_marker", "motion", "motion_marker", "readout")}
     assert changed == data | {("Label", "traction_caption", "text"),
                               ("Slider", None, "value")}
-    assert ex.state.psi == ex.psi_slider.value == ex.psi_slider._entry.value == 2.51
+    assert ex.state.psi == ex.psi_slider.value == 2.51
 
 
 class _RecordingDoc:
