@@ -60,8 +60,9 @@ function draw(k) {
   }
 }
 function tick(now) {
-  const progress = (start + speed * (now - t0) / 1000 / seconds) % 1;
-  const k = Math.min(K - 1, Math.floor(progress * K));
+  // a frame's timestamp may precede t0 by a little: keep progress in [0, 1)
+  const p = (start + speed * Math.max(0, now - t0) / 1000 / seconds) % 1;
+  const k = Math.max(0, Math.min(K - 1, Math.floor(p * K)));
   if (k !== last) { draw(k); last = k; }
   if (now - texted > 250) { caption.text = F.caption[k]; texted = now; }
   st.raf = requestAnimationFrame(tick);
