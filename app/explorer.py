@@ -469,7 +469,7 @@ class Explorer:
         if loc is None or doc is None:
             return
         if doc.session_context is None:  # no server loop (tests): write at once
-            loc.search = "?" + urlencode(self.state.query())
+            self._put_url(loc)
             return
         self._url_due = time.monotonic() + URL_DELAY_S
         if not self._url_pending:
@@ -483,6 +483,9 @@ class Explorer:
             doc.add_timeout_callback(partial(self._flush_url, loc, doc), int(wait * 1000))
             return
         self._url_pending = False
+        self._put_url(loc)
+
+    def _put_url(self, loc) -> None:
         loc.search = "?" + urlencode(self.state.query())
 
     def view(self) -> pn.template.BootstrapTemplate:

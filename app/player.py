@@ -32,8 +32,6 @@ const F = get(frames);
 const K = F.tau ? F.tau.length : 0;
 if (K === 0) { return; }                       // stopped by the server
 const P = get(profiles);
-// the two sources may arrive in either order: start when both hold this contact
-if (!P.r || P.r.length === 0 || P.r.length % K !== 0) { return; }
 const L = P.r.length / K;
 const names = ["r", "traction", "upper", "lower", "stick_lo", "stick_hi"];
 const seconds = F.seconds[0], speed = F.speed[0], start = F.start[0];
@@ -94,16 +92,12 @@ class Player:
         self.profiles = ColumnDataSource(data={}, name="frame_profiles")
         # referenced from a figure, so that both sources are part of the document
         title_figure.tags = [*title_figure.tags, self.frames, self.profiles]
-        # started by whichever of the two sources arrives last (Panel may reorder the
-        # changes of one update when it merges queued updates)
-        start = CustomJS(args={
+        self.frames.js_on_change("data", CustomJS(args={
             "frames": self.frames, "profiles": self.profiles, "traction": traction.source,
             "disc": disc.source, "markers": [s.marker for s in curves],
             "marker_columns": [[f"{s.name}:{col}" for col, *_ in s.curves] for s in curves],
             "caption": caption, "title": title_figure.title,
-        }, code=_PLAY_JS)
-        self.frames.js_on_change("data", start)
-        self.profiles.js_on_change("data", start)
+        }, code=_PLAY_JS))
 
     def play(self, c: Contact, start: float, speed: float, seconds: float) -> None:
         """Send the frames of contact `c` and start the browser's player at progress
