@@ -29,6 +29,7 @@ from bokeh.models import (
 )
 from bokeh.plotting import figure
 
+from app.wire import inline
 from core import PHASE_NAMES, Contact, Phase, impulse_ratio
 
 TOOLS = "pan,wheel_zoom,box_zoom,reset,save"
@@ -213,7 +214,7 @@ class TractionScene(Scene):
         return {"title": f"Traction: {PHASE_NAMES[phase]}", "title_color": PHASE_COLORS[phase]}
 
     def update_tau(self, c: Contact, tau: float) -> None:
-        self.source.data = {k: v[0] for k, v in self.profiles(c, np.array([tau])).items()}
+        self.source.data = inline({k: v[0] for k, v in self.profiles(c, np.array([tau])).items()})
         style = self.phase_style(int(np.asarray(c.phase(tau)).reshape(-1)[0]))
         self.figure.title.text_color = style["title_color"]
         self.figure.title.text = style["title"]  # changes once a phase
@@ -302,7 +303,7 @@ class CurveScene(Scene):
     def update_contact(self, c: Contact) -> None:
         tau = c.tau_grid(CURVE_POINTS)
         columns = self.columns(c, tau)
-        self.source.data = {"tau": tau, **columns}
+        self.source.data = inline({"tau": tau, **columns})
         fit_range(self.figure.x_range, tau, pad=0.02)
         fit_range(self.figure.y_range, *columns.values(), pad=0.03, snap=True)
 
@@ -452,7 +453,7 @@ class ImpulseScene(Scene):
             return
         self._shown = key
         ratio = np.asarray(impulse_ratio(psi, c.tau0), float)
-        self.source.data = {"psi": psi, "ratio": ratio}
+        self.source.data = inline({"psi": psi, "ratio": ratio})
         fig = self.figure
         if self.log:
             fig.x_range.start, fig.x_range.end = psi[0], psi[-1]

