@@ -108,6 +108,45 @@ def test_keyboard_slider_changes_plot_data(browser, url) -> None:
     page.close()
 
 
+#: Glyph renderer views whose element is not where their bounding box is.
+JS_MISPLACED = """() => {
+  const views = [];
+  const walk = (v) => {
+    if (v.model && v.model.type === "GlyphRenderer") views.push(v);
+    for (const c of v.children()) walk(c);
+  };
+  Object.values(Bokeh.index).forEach(walk);
+  const bad = [];
+  let placed = 0;
+  for (const v of views) {
+    const b = v.bbox;
+    if (b == null || !b.is_valid || b.width + b.height === 0) continue;  // never placed
+    const css = (v.position.css || "").replace(/\\s+/g, " ");
+    const want = `left: ${b.left}px; top: ${b.top}px; width: ${b.width}px; height: ${b.height}px;`;
+    if (css.includes(want)) placed += 1; else bad.push([css, want]);
+  }
+  return {placed, bad};
+}"""
+
+
+def test_glyph_elements_follow_their_glyphs_after_a_move(browser, url) -> None:
+    """The shim writes glyph renderers' element positions after the plots have painted
+    (app/browser.py); they must still end where BokehJS puts them."""
+    page, console = open_explorer(browser, url)
+    assert page.evaluate("() => Bokeh.require('models/renderers/glyph_renderer')"
+                         ".GlyphRendererView.prototype.__zharii_late_position") is True
+    psi0 = column(page, "impulse_marker", "psi")[0]
+    page.locator(".noUi-handle").first.focus()
+    page.keyboard.press("ArrowRight")
+    page.wait_for_function("(v) => __col('impulse_marker', 'psi')[0] > v", arg=psi0,
+                           timeout=20_000)
+    page.wait_for_timeout(500)
+    where = page.evaluate(JS_MISPLACED)
+    assert where["bad"] == [] and where["placed"] > 20, where
+    assert errors(console) == []
+    page.close()
+
+
 def test_number_box_follows_the_slider_and_takes_exact_values(browser, url) -> None:
     """The box shows each slider move (linked in the browser, no server echo); a value
     typed in it, even beyond the slider's range, reaches the plots and the slider."""
