@@ -32,7 +32,11 @@ import typing as t
 
 import panel as pn
 import param
-from panel.io.document import _is_write_locked
+
+try:  # Panel's own test of a socket's write lock (private: a later Panel may lack it)
+    from panel.io.document import _is_write_locked
+except ImportError:  # then the slider does not wait, and only speed is lost
+    _is_write_locked = None
 
 #: The box shows the slider's value without telling the server (it hears the slider).
 SLIDER_TO_ENTRY_JS = "entry.setv({value: cb_obj.value}, {sync: false});"
@@ -67,6 +71,8 @@ async def socket_free(doc, turns: int = 50) -> None:
     Gives up after `turns` loop turns (a long write: Panel's own queue then handles it).
     Outside a server session it returns at once.
     """
+    if _is_write_locked is None:
+        return
     session = getattr(doc.session_context, "_session", None)
     connections = getattr(session, "_subscribed_connections", ())
     for _ in range(turns):
