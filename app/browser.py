@@ -28,24 +28,25 @@ from bokeh.models import CustomJS
 
 SHIM_JS = """
 const Bokeh = window.Bokeh;
-const need = (path) => { try { return Bokeh.require(path); } catch (e) { return null; } };
-const dom = need("core/dom");
-const sheet = dom && dom.InlineStyleSheet ? dom.InlineStyleSheet.prototype : null;
-if (sheet == null || typeof sheet._update !== "function") {
-  console.info("zharii: BokehJS stylesheet shim not installed (API changed)");
-} else if (!sheet.__zharii_skip_same) {
-  const update = sheet._update;
-  sheet._update = function (css) {
+// wrap(path, cls, method, flag, make): replace cls.prototype[method] by make(original),
+// once per page; if BokehJS no longer has it, leave it alone and say so
+const wrap = (path, cls, method, flag, make) => {
+  let module = null;
+  try { module = Bokeh.require(path); } catch (e) { module = null; }
+  const proto = module && module[cls] ? module[cls].prototype : null;
+  if (proto == null || typeof proto[method] !== "function") {
+    console.info(`zharii: BokehJS shim for ${cls}.${method} not installed (API changed)`);
+  } else if (!proto[flag]) {
+    proto[method] = make(proto[method]);
+    proto[flag] = true;
+  }
+};
+wrap("core/dom", "InlineStyleSheet", "_update", "__zharii_skip_same", (update) =>
+  function (css) {
     if (this.el == null || this.el.textContent !== css) { update.call(this, css); }
-  };
-  sheet.__zharii_skip_same = true;
-}
-const gr = need("models/renderers/glyph_renderer");
-const glyph = gr && gr.GlyphRendererView ? gr.GlyphRendererView.prototype : null;
-if (glyph == null || typeof glyph.update_position !== "function") {
-  console.info("zharii: BokehJS glyph position shim not installed (API changed)");
-} else if (!glyph.__zharii_late_position) {
-  const update_position = glyph.update_position;
+  });
+wrap("models/renderers/glyph_renderer", "GlyphRendererView", "update_position",
+     "__zharii_late_position", (update_position) => {
   const pending = new Set();
   const flush = () => {
     const views = [...pending];
@@ -54,12 +55,11 @@ if (glyph == null || typeof glyph.update_position !== "function") {
       try { update_position.call(view); } catch (e) { /* removed meanwhile */ }
     }
   };
-  glyph.update_position = function () {
+  return function () {
     if (pending.size === 0) { setTimeout(flush, 0); }
     pending.add(this);
   };
-  glyph.__zharii_late_position = true;
-}
+});
 """
 
 
