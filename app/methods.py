@@ -123,10 +123,11 @@ class MethodsScene:
         if not self.shown:
             return
         tau = c.tau_grid(CURVE_POINTS)
-        T = c.tangential_force(tau)
+        line = c.at(tau)
+        T, P = line.tangential_force, line.normal_force
         self.exact.data = {"tau": tau, "T": T}
         fit_range(self.figure.x_range, tau, pad=0.02)
-        fit_range(self.figure.y_range, T, -c.normal_force(tau), c.normal_force(tau))
+        fit_range(self.figure.y_range, T, -P, P)
         if self.live.value:
             self.run()
 

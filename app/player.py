@@ -104,10 +104,11 @@ class Player:
         `start` in [0, 1) (profiles first: the script starts on the frames' arrival)."""
         taus = frame_taus(c)
         self.profiles.data = {k: v.ravel() for k, v in self.traction.profiles(c, taus).items()}
-        phases = c.phase(taus)
+        line = c.at(taus)
+        phases = line.phase
         styles = [TractionScene.phase_style(int(p)) for p in phases]
         data = {
-            "tau": taus, "a": c.contact_radius(taus), "b": c.stick_radius(taus),
+            "tau": taus, "a": line.contact_radius, "b": line.stick_radius,
             "phase": phases,
             "disc_color": [DiscScene.slip_color(int(p)) for p in phases],
             "disc_label": ["counter-slip" if p in (3, 4) else "slip" for p in phases],

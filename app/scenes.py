@@ -199,7 +199,8 @@ class TractionScene(Scene):
         can copy frames into the plotted arrays in place.
         """
         taus = np.atleast_1d(np.asarray(taus, float))
-        a, b = c.contact_radius(taus), c.stick_radius(taus)
+        line = c.at(taus)
+        a, b = line.contact_radius, line.stick_radius
         grid = np.broadcast_to(self.r_grid, (taus.size, self.r_grid.size))
         r = np.sort(np.concatenate([grid, np.stack([-a, a, -b, b], axis=1)], axis=1), axis=1)
         t = taus[:, None]
@@ -253,9 +254,8 @@ class DiscScene(Scene):
         return PHASE_COLORS[4 if phase == 3 else phase]
 
     def update_tau(self, c: Contact, tau: float) -> None:
-        a = float(c.contact_radius(tau))
-        b = float(c.stick_radius(tau))
-        phase = int(np.asarray(c.phase(tau)).reshape(-1)[0])
+        line = c.at(tau)
+        a, b, phase = float(line.contact_radius), float(line.stick_radius), int(line.phase)
         slip = "counter-slip" if phase in (3, 4) else "slip"
         self.source.data = {
             "x": [0.0, 0.0], "y": [0.0, 0.0], "inner": [0.0, b], "outer": [b, a],
@@ -341,8 +341,9 @@ class ForceScene(CurveScene):
                                line_alpha=0.7, legend_field="label")
 
     def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
-        n = c.normal_force(tau)  # P / P0 = mu P / T0
-        return {"T": c.tangential_force(tau), "muP": n, "neg_muP": -n}
+        line = c.at(tau)
+        n = line.normal_force  # P / P0 = mu P / T0
+        return {"T": line.tangential_force, "muP": n, "neg_muP": -n}
 
     def set_family(self, contacts: list[Contact]) -> None:
         """Overlay T / T0 of further contacts (the paper's Fig. 7 families).
@@ -374,8 +375,8 @@ class RadiiScene(CurveScene):
     )
 
     def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
-        return {"approach": c.approach(tau), "a": c.contact_radius(tau),
-                "b": c.stick_radius(tau)}
+        line = c.at(tau)
+        return {"approach": line.approach, "a": line.contact_radius, "b": line.stick_radius}
 
 
 class MotionScene(CurveScene):
@@ -392,7 +393,8 @@ class MotionScene(CurveScene):
     )
 
     def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
-        return {"v2": c.centre_velocity(tau), "u2": c.centre_displacement(tau),
+        line = c.at(tau)
+        return {"v2": line.centre_velocity, "u2": line.centre_displacement,
                 "drive_v": c.drive_velocity(tau), "drive_u": c.drive_displacement(tau)}
 
 

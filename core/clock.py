@@ -55,8 +55,8 @@ def half_offset(tau: ArrayLike) -> NDArray[np.float64]:
     """
     t = np.asarray(tau, dtype=float)
     x = _offset(t, 1.0)  # an array, also for 0-d input: the updates below are in place
-    away = (x < -np.pi) | (x >= np.pi)
-    if away.any():
+    if x.size and not (x.min() >= -np.pi and x.max() < np.pi):  # (nan: general path, stays nan)
+        away = (x < -np.pi) | (x >= np.pi)
         ta = t[away]
         x[away] = _offset(ta, 4.0 * np.floor((ta + HALF_PI_HI) / TWO_PI) + 1.0)
     x *= 0.5

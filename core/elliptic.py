@@ -45,7 +45,7 @@ _COEFFS = _series_coefficients(_N_TERMS)
 _COEFFS_REVERSED = tuple(float(c) for c in _COEFFS[::-1])
 
 
-def _quartic_integral_scalar(m: float, mc: float) -> float:
+def quartic_integral_float(m: float, mc: float) -> float:
     """J(m) for one float m: the same two branches without array overhead."""
     if m < SERIES_LIMIT:
         acc = 0.0
@@ -63,7 +63,7 @@ def quartic_integral(m: ArrayLike, mc: ArrayLike | None = None) -> NDArray[np.fl
     """
     if np.ndim(m) == 0 and (mc is None or np.ndim(mc) == 0):
         mf = float(m)
-        return np.asarray(_quartic_integral_scalar(mf, 1.0 - mf if mc is None else float(mc)))
+        return np.asarray(quartic_integral_float(mf, 1.0 - mf if mc is None else float(mc)))
     m = np.asarray(m, dtype=float)
     mc = 1.0 - m if mc is None else np.asarray(mc, dtype=float)
     m, mc = np.broadcast_arrays(m, mc)

@@ -2,8 +2,9 @@
 
 Scales: lengths in a* = sqrt(R (H - h) / 2) (largest contact radius), approach in H - h,
 pressure in p* = 4 G a* / ((1 - nu) pi R), normal force in P0 = T0 / mu (eq 37), so that
-P / P0 = (sin tau - sin tau0)^(3/2) (eq 9). Inputs are the contact clock w of
-``core.clock`` and s = sin(e/2) with e = pi/2 - tau0; 1 - sin tau0 = 2 s^2.
+P / P0 = (sin tau - sin tau0)^(3/2) (eq 9). Inputs are powers of the contact radius,
+(a/a*)^2 = (1 - w)(1 + w) with the contact clock w of ``core.clock``, and s = sin(e/2)
+with e = pi/2 - tau0; 1 - sin tau0 = 2 s^2.
 """
 
 from __future__ import annotations
@@ -11,19 +12,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from core.clock import one_minus_square
-
 SQRT8 = 2.0 * np.sqrt(2.0)
-
-
-def approach(w: NDArray[np.float64]) -> NDArray[np.float64]:
-    """alpha / (H - h) = (sin tau - sin tau0) / (1 - sin tau0) (eq 8); equals (a / a*)^2."""
-    return one_minus_square(w)
-
-
-def contact_radius(w: NDArray[np.float64]) -> NDArray[np.float64]:
-    """a / a* (eq 7, 8): 0 at the contact ends, 1 at tau = pi/2."""
-    return np.sqrt(one_minus_square(w))
 
 
 def cube(a2: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -33,9 +22,9 @@ def cube(a2: NDArray[np.float64]) -> NDArray[np.float64]:
     return out
 
 
-def normal_force(w: NDArray[np.float64], sin_half_e: float) -> NDArray[np.float64]:
-    """P / P0 = (sin tau - sin tau0)^(3/2) = (2 s^2)^(3/2) (a/a*)^3 (eq 9)."""
-    return (SQRT8 * sin_half_e**3) * cube(one_minus_square(w))
+def normal_force(a3: NDArray[np.float64], sin_half_e: float) -> NDArray[np.float64]:
+    """P / P0 = (sin tau - sin tau0)^(3/2) = (2 s^2)^(3/2) (a/a*)^3 (eq 9), from a3 = (a/a*)^3."""
+    return (SQRT8 * sin_half_e**3) * a3
 
 
 def pressure(r: ArrayLike, a2: ArrayLike) -> NDArray[np.float64]:

@@ -17,19 +17,18 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from core.clock import one_minus_square
-from core.tangential import Phase, phase
+from core.tangential import Phase
 
 
 def centre_displacement(
-    w: NDArray[np.float64], psi: float, sin_half_e: float
+    w: NDArray[np.float64], a2: NDArray[np.float64], ph: NDArray[np.int_], psi: float,
+    sin_half_e: float,
 ) -> NDArray[np.float64]:
-    """u2 / u0 (eq 43); 0 outside contact and at both contact ends."""
+    """u2 / u0 (eq 43) from the clock w, a2 = (a/a*)^2 and the phase codes ph; 0 outside
+    contact and at both contact ends."""
     s2 = sin_half_e**2
-    a2 = one_minus_square(w)
     if psi <= 1.0:
         return s2 * a2
-    ph = phase(w, psi)
     out = np.where(ph == Phase.COUNTER_SLIP, -s2 * a2 / psi, s2 * a2 / psi)
     partial = ph == Phase.PARTIAL_STICK
     out[partial] = s2 * (1.0 / psi - w[partial] ** 2)
@@ -37,10 +36,10 @@ def centre_displacement(
 
 
 def centre_velocity(
-    w: NDArray[np.float64], cos_tau: NDArray[np.float64], psi: float
+    cos_tau: NDArray[np.float64], ph: NDArray[np.int_], psi: float
 ) -> NDArray[np.float64]:
-    """v2 / (omega u0) (eq 42); 0 outside contact. Jumps at tau0, tau1 and pi - tau0."""
-    ph = phase(w, psi)
+    """v2 / (omega u0) (eq 42) from cos(tau) and the phase codes ph; 0 outside contact.
+    Jumps at tau0, tau1 and pi - tau0."""
     factor = np.select(
         [
             ph == Phase.FULL_STICK,

@@ -15,14 +15,15 @@ Scales: traction in mu p*, force in T0 (eq 37), radii in a*.
 
 from __future__ import annotations
 
+import math
 from enum import IntEnum
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from core.clock import HALF_PI_HI, HALF_PI_LO, one_minus_square
-from core.elliptic import quartic_integral
-from core.hertz import SQRT8, cube, pressure
+from core.elliptic import quartic_integral, quartic_integral_float
+from core.hertz import SQRT8, pressure
 
 
 class Phase(IntEnum):
@@ -44,9 +45,9 @@ PHASE_NAMES: dict[int, str] = {
 }
 
 
-def stick_clock(psi: ArrayLike) -> NDArray[np.float64]:
+def stick_clock(psi: float) -> float:
     """k = sqrt(2 / (psi + 1)): the clock value w at tau1 (psi > 1)."""
-    return np.sqrt(2.0 / (np.asarray(psi, dtype=float) + 1.0))
+    return math.sqrt(2.0 / (psi + 1.0))
 
 
 def tau1(psi: float, sin_half_e: float, cos_half_e: float) -> float:
@@ -59,13 +60,13 @@ def tau1(psi: float, sin_half_e: float, cos_half_e: float) -> float:
     """
     if psi <= 1.0:
         return float("nan")
-    k = float(stick_clock(psi))
+    k = stick_clock(psi)
     x = k * sin_half_e
     if x <= 0.5:
-        return float(HALF_PI_HI + (2.0 * np.arcsin(x) + HALF_PI_LO))
+        return HALF_PI_HI + (2.0 * math.asin(x) + HALF_PI_LO)
     one_minus_x = (psi - 1.0) / ((psi + 1.0) * (1.0 + k)) + k * cos_half_e**2 / (1.0 + sin_half_e)
-    quarter = np.arcsin(np.sqrt(0.5 * one_minus_x))
-    return float(3.0 * HALF_PI_HI - (4.0 * quarter - 3.0 * HALF_PI_LO))
+    quarter = math.asin(math.sqrt(0.5 * one_minus_x))
+    return 3.0 * HALF_PI_HI - (4.0 * quarter - 3.0 * HALF_PI_LO)
 
 
 def phase(w: NDArray[np.float64], psi: float) -> NDArray[np.int_]:
@@ -73,7 +74,7 @@ def phase(w: NDArray[np.float64], psi: float) -> NDArray[np.int_]:
     inside = np.abs(w) <= 1.0
     if psi <= 1.0:
         return np.where(inside, Phase.FULL_STICK, Phase.NO_CONTACT).astype(int)
-    k = float(stick_clock(psi))
+    k = stick_clock(psi)
     out = np.full(w.shape, int(Phase.SLIP))
     out[w > 0.0] = Phase.PARTIAL_STICK
     out[w >= k] = Phase.COUNTER_SLIP
@@ -85,29 +86,32 @@ def stick_radius_squared(w: NDArray[np.float64], psi: float) -> NDArray[np.float
     """(b / a*)^2: a^2 in full stick, (1 - w/k)(1 + w/k) in partial stick (eq 30), else 0."""
     if psi <= 1.0:
         return one_minus_square(w)
-    k = float(stick_clock(psi))
-    return np.where((w > 0.0) & (w < k), one_minus_square(w / k), 0.0)
+    # v = w / k in unloading and 1 while loading, where (1 - v)(1 + v) is then 0; it is
+    # clipped to 0 for v >= 1 (counter-slip): no masks needed
+    unloading = w > 0.0
+    v = np.divide(w, stick_clock(psi), out=np.ones_like(w), where=unloading)
+    return one_minus_square(v)
 
 
-def tangential_force(w: NDArray[np.float64], psi: float, sin_half_e: float) -> NDArray[np.float64]:
-    """T / T0 on the upper sphere, positive along the drive (eqs 38, 39).
+def tangential_force(
+    a3: NDArray[np.float64],
+    b3: NDArray[np.float64] | None,
+    w: NDArray[np.float64],
+    psi: float,
+    sin_half_e: float,
+) -> NDArray[np.float64]:
+    """T / T0 on the upper sphere, positive along the drive (eqs 38, 39), from the cubed
+    radii a3 = (a/a*)^3 and b3 = (b/a*)^3 (unused, may be None, for psi <= 1) at clock w.
 
     T / T0 = (1 - sin tau0)^(3/2) times: psi a^3 (stick); a^3 (slip); 2 b^3 - a^3
-    (partial stick); -a^3 (counter-slip), with a, b in units of a*.
+    (partial stick); -a^3 (counter-slip). b3 is 0 outside partial stick, so the last three
+    are one expression: 2 b^3 -+ a^3, with the sign of a^3 flipped in unloading (w > 0).
     """
-    t = cube(one_minus_square(w))
     scale = SQRT8 * sin_half_e**3
     if psi <= 1.0:
-        t *= psi * scale
-        return t
-    unloading = w > 0.0
-    np.negative(t, out=t, where=unloading)
-    # 2 b^3 in partial stick: b^2 = (1 - v)(1 + v) with v = w / k, clipped to 0 for
-    # v >= 1 (counter-slip); v = 1 while loading makes it 0 there too (no masks needed)
-    v = np.divide(w, float(stick_clock(psi)), out=np.ones_like(w), where=unloading)
-    b3 = cube(one_minus_square(v))
-    b3 *= 2.0
-    t += b3
+        return a3 * (psi * scale)
+    t = np.negative(a3, out=np.array(a3), where=w > 0.0)
+    t += 2.0 * b3
     t *= scale
     return t
 
@@ -132,9 +136,13 @@ def impulse_ratio(psi: ArrayLike, sin_half_e: float, cos_half_e: float) -> NDArr
     m0 = sin^2(e/2) and J of ``core.elliptic`` (F = 12 m^2 J), free of cancellation.
     """
     m0, mc0 = sin_half_e**2, cos_half_e**2
-    if np.ndim(psi) == 0:  # one contact: no masks (quartic_integral has a scalar path too)
+    if np.ndim(psi) == 0:  # one contact: floats only, no array calls
         p = float(psi)
-        return np.asarray(p if p <= 1.0 else _ratio_above_one(p, m0, mc0))
+        if p <= 1.0:
+            return np.asarray(p)
+        k2 = 2.0 / (p + 1.0)
+        j1 = quartic_integral_float(k2 * m0, (p - 1.0) / (p + 1.0) + k2 * mc0)
+        return np.asarray(math.sqrt(k2) * j1 / quartic_integral_float(m0, mc0))
     psi = np.asarray(psi, dtype=float)
     out = psi.copy()
     big = psi > 1.0

@@ -1,0 +1,99 @@
+"""One contact at an array of times: every quantity from a single evaluation of the clock.
+
+``Contact.at(tau)`` returns a ``Timeline``. Its quantities are computed on first use and
+share their intermediates: the clock w (one sine per time), the squared contact radius
+a^2 = (1 - w)(1 + w), a^3, the squared stick radius b^2 and the phase. A plot of T and b
+on one grid therefore costs one clock instead of two (``Contact``'s single-quantity
+methods are this class used once).
+
+Units as in ``Contact``: forces in T0 (eq 37) or P0 = T0 / mu, radii in a*, displacement
+in u0, velocity in omega u0. Arrays have the shape of tau, are zero (never nan) outside
+contact, and are read-only: they are shared between the quantities derived from them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from numpy.typing import NDArray
+
+from core import hertz, kinematics, tangential
+from core.clock import clock, one_minus_square
+
+
+def _fixed(a: NDArray) -> NDArray:
+    """a as a read-only array (numpy scalars, from 0-d inputs, become 0-d arrays)."""
+    if not isinstance(a, np.ndarray):
+        a = np.asarray(a)
+    a.setflags(write=False)
+    return a
+
+
+@dataclass(frozen=True, eq=False)
+class Timeline:
+    """The contact (psi, s = sin(e/2) of ``core.clock``) at the times ``tau`` (radians)."""
+
+    tau: NDArray[np.float64]
+    psi: float
+    sin_half_e: float
+
+    @cached_property
+    def clock(self) -> NDArray[np.float64]:
+        """w = sin((tau - pi/2)/2) / sin(e/2): -1 at tau0, 0 at pi/2, +1 at pi - tau0."""
+        return _fixed(clock(self.tau, self.sin_half_e))
+
+    @cached_property
+    def phase(self) -> NDArray[np.int_]:
+        """Phase code (``core.Phase``): 0 no contact, 1 full stick, 2 slip, 3 partial
+        stick, 4 counter-slip."""
+        return _fixed(tangential.phase(self.clock, self.psi))
+
+    @cached_property
+    def approach(self) -> NDArray[np.float64]:
+        """alpha / (H - h) = (sin tau - sin tau0) / (1 - sin tau0) (eq 8); equals a^2 / a*^2."""
+        return _fixed(one_minus_square(self.clock))
+
+    @cached_property
+    def contact_radius(self) -> NDArray[np.float64]:
+        """a / a* (eqs 7, 8)."""
+        return _fixed(np.sqrt(self.approach))
+
+    @cached_property
+    def _a3(self) -> NDArray[np.float64]:
+        return _fixed(hertz.cube(self.approach))
+
+    @cached_property
+    def _b2(self) -> NDArray[np.float64]:
+        if self.psi <= 1.0:  # full stick: b = a
+            return self.approach
+        return _fixed(tangential.stick_radius_squared(self.clock, self.psi))
+
+    @cached_property
+    def stick_radius(self) -> NDArray[np.float64]:
+        """b / a* (eq 30): a in full stick, the stick disc in partial stick, else 0."""
+        return _fixed(np.sqrt(self._b2))
+
+    @cached_property
+    def normal_force(self) -> NDArray[np.float64]:
+        """P / P0 = (sin tau - sin tau0)^(3/2) (eq 9); also mu P / T0."""
+        return _fixed(hertz.normal_force(self._a3, self.sin_half_e))
+
+    @cached_property
+    def tangential_force(self) -> NDArray[np.float64]:
+        """T / T0 (eqs 38, 39): force on the upper sphere, positive along the drive."""
+        b3 = None if self.psi <= 1.0 else hertz.cube(self._b2)
+        return _fixed(tangential.tangential_force(self._a3, b3, self.clock, self.psi,
+                                                  self.sin_half_e))
+
+    @cached_property
+    def centre_displacement(self) -> NDArray[np.float64]:
+        """u2 / u0, displacement of the contact centre of the upper sphere (eq 43)."""
+        return _fixed(kinematics.centre_displacement(self.clock, self.approach, self.phase,
+                                                     self.psi, self.sin_half_e))
+
+    @cached_property
+    def centre_velocity(self) -> NDArray[np.float64]:
+        """v2 / (omega u0), velocity of the contact centre of the upper sphere (eq 42)."""
+        return _fixed(kinematics.centre_velocity(np.cos(self.tau), self.phase, self.psi))

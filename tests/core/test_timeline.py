@@ -1,0 +1,70 @@
+"""Contact.at(tau): the quantities of one contact sharing one clock evaluation.
+
+The sharing must never show: every quantity is bit for bit what it is when computed
+alone, whatever order they are asked in, and no quantity can be changed in place
+(each is an input of others)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from core import Contact
+
+QUANTITIES = ("clock", "phase", "approach", "contact_radius", "stick_radius", "normal_force",
+              "tangential_force", "centre_displacement", "centre_velocity")
+CASES = [(0.4, math.pi / 6), (1.0, -0.9), (2.414, -0.9), (28.35, 1.5), (1e6, 0.3)]
+
+
+def _times(c: Contact) -> np.ndarray:
+    # a grid through every phase, plus times outside contact and a period away
+    return np.concatenate([c.tau_grid(301), [c.tau0 - 0.1, c.tau_end + 0.2, 1.0 + 2 * math.pi]])
+
+
+@pytest.mark.parametrize(("psi", "tau0"), CASES)
+def test_shared_quantities_equal_each_computed_alone(psi: float, tau0: float) -> None:
+    c = Contact(psi, tau0)
+    tau = _times(c)
+    alone = {q: getattr(c.at(tau), q) for q in QUANTITIES}  # a fresh timeline each
+    for order in (QUANTITIES, QUANTITIES[::-1]):
+        shared = c.at(tau)
+        for q in order:
+            np.testing.assert_array_equal(getattr(shared, q), alone[q], err_msg=q)
+    # and they are the values of the Contact methods, which are plain formulas
+    k = math.sqrt(2 / (psi + 1))
+    a2 = np.maximum((1 - alone["clock"]) * (1 + alone["clock"]), 0)
+    np.testing.assert_array_equal(alone["approach"], a2)
+    scale = (1 - math.sin(tau0)) ** 1.5
+    inside = np.abs(alone["clock"]) <= 1
+    assert np.all(alone["tangential_force"][~inside] == 0)
+    if psi > 1:  # T = +a^3 (slip), 2b^3 - a^3 (partial stick), -a^3 (counter-slip) in T0
+        b2 = np.where(alone["phase"] == 3, 1 - (alone["clock"] / k) ** 2, 0)
+        sign = np.where(alone["clock"] > 0, -1.0, 1.0)
+        expected = scale * (sign * a2**1.5 + 2 * b2**1.5)
+        np.testing.assert_allclose(alone["tangential_force"], expected, rtol=1e-12, atol=1e-15)
+
+
+def test_quantities_are_read_only_and_have_the_shape_of_tau() -> None:
+    c = Contact(2.414, math.pi / 6)
+    line = c.at(np.linspace(0.5, 2.5, 12).reshape(3, 4))
+    for q in QUANTITIES:
+        values = getattr(line, q)
+        assert values.shape == (3, 4), q
+        with pytest.raises(ValueError, match="read-only"):
+            values[0, 0] = 1.0
+    assert c.at(1.0).tangential_force.shape == ()
+    assert c.tangential_force([1.0, 2.0]).shape == (2,)
+
+
+def test_long_arrays_go_in_chunks_with_the_same_values() -> None:
+    # CHUNK + 3 times, 2-d: the chunked path must give what one timeline gives
+    from core.contact import CHUNK
+
+    c = Contact(28.35, -0.9)
+    tau = np.linspace(-1.0, 4.0, 2 * (CHUNK // 2 + 2)).reshape(2, -1)
+    assert tau.size > CHUNK
+    line = c.at(tau)
+    for q in QUANTITIES[1:]:
+        values = getattr(c, q)(tau)
+        np.testing.assert_array_equal(values, getattr(line, q), err_msg=q)
+        assert values.shape == tau.shape and not values.flags.writeable, q
