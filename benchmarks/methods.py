@@ -46,6 +46,7 @@ LADDERS: dict[str, list[int]] = {
 }
 QUICK_LADDERS = {k: v[: max(3, len(v) // 2)] for k, v in LADDERS.items()}
 THRESHOLDS = [1e-2, 1e-4, 1e-6, 1e-9]
+RETIME_BELOW = 2e-3  # seconds: runs this fast are timed in two windows (``retime_fast``)
 INDEPENDENT = [m for m in METHODS if m not in ("quad", "gauss_legendre")]
 RATIO_GROUPS: dict[str, list[str]] = {
     "converging solvers (MDR, annulus)": ["mdr", "annulus"],
@@ -102,7 +103,7 @@ def closed_form_row(psi: float, tau0: float) -> dict:
                 err_rel=float(err_rel))
 
 
-def amortised_impulse_time(tau0: float, n: int = 1000, repeat: int = 10) -> float:
+def amortised_impulse_time(tau0: float, n: int = 1000, repeat: int = 50) -> float:
     """Seconds per case of core.impulse_ratio vectorised over n values of psi (Fig. 8)."""
     psis = np.logspace(-1, 3, n)
     best = np.inf
@@ -160,7 +161,25 @@ def run_all(psis, tau0s, ladders) -> list[dict]:
         rows.append(dict(method=name, resolution=resolution, psi=psi, tau0=tau0,
                          wall_time=wall, err_T=e.T, err_impulse=e.impulse, err_b=e.b,
                          err=e.combined, err_rel=e.combined_rel))
+    retime_fast(rows)
     return rows
+
+
+def retime_fast(rows: list[dict], limit: float = RETIME_BELOW) -> None:
+    """Time every run faster than ``limit`` (the closed form among them) a second time,
+    minutes after the first, and keep the better of the two windows.
+
+    On a shared 2-core VM one window of a few milliseconds can land in a stall and
+    double a sub-millisecond time; the smallest speed ratios (closed form against a
+    30-step DEM run) are made of exactly such times. Every fast row gets the same
+    second chance, so the correction favours no method."""
+    fast = [r for r in rows if r["wall_time"] < limit]
+    for r in tqdm(fast, desc="second timing of the fast runs", unit="run"):
+        if r["method"] == "closed_form":
+            again = closed_form_time(Contact, r["psi"], r["tau0"])
+        else:
+            again = timed_run(r["method"], Contact(r["psi"], r["tau0"]), r["resolution"])[1]
+        r["wall_time"] = min(r["wall_time"], again)
 
 
 def summary(rows: list[dict]) -> dict[tuple[str, int], dict]:
