@@ -239,9 +239,12 @@ def markdown(rows: list[dict], summ: dict, ratio_groups: dict[str, dict]) -> str
         "Wall time: median over the cases; errors: worst case. err = max(err_T, "
         "err_impulse); err_T = max |T - T_closed| / T0 on the method's own times; "
         "err_b = max |b - b_closed| / a*; err_rel = max(err_T / max|T_closed|, "
-        "err_impulse / impulse ratio).",
+        "err_impulse / impulse ratio). Runs under "
+        f"{RETIME_BELOW * 1e3:g} ms keep the better of two timing windows (start and end "
+        "of the run).",
         "",
-        f"Closed form (Contact + T and b on 200 points + impulse ratio): median "
+        f"Closed form (T and b on 200 points and the impulse ratio, from a given Contact, "
+        "as the methods are timed): median "
         f"{np.median([r['wall_time'] for r in cf]) * 1e6:.0f} us, worst error against "
         f"50-digit mpmath {max(r['err'] for r in cf):.1e}.",
         "",
