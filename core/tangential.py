@@ -16,6 +16,7 @@ Scales: traction in mu p*, force in T0 (eq 37), radii in a*.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from enum import IntEnum
 
 import numpy as np
@@ -138,11 +139,8 @@ def impulse_ratio(psi: ArrayLike, sin_half_e: float, cos_half_e: float) -> NDArr
     m0, mc0 = sin_half_e**2, cos_half_e**2
     if np.ndim(psi) == 0:  # one contact: floats only, no array calls
         p = float(psi)
-        if p <= 1.0:
-            return np.asarray(p)
-        k2 = 2.0 / (p + 1.0)
-        j1 = quartic_integral_float(k2 * m0, (p - 1.0) / (p + 1.0) + k2 * mc0)
-        return np.asarray(math.sqrt(k2) * j1 / quartic_integral_float(m0, mc0))
+        return np.asarray(p if p <= 1.0 else _ratio_above_one(p, m0, mc0,
+                                                              quartic_integral_float))
     psi = np.asarray(psi, dtype=float)
     out = psi.copy()
     big = psi > 1.0
@@ -151,8 +149,11 @@ def impulse_ratio(psi: ArrayLike, sin_half_e: float, cos_half_e: float) -> NDArr
     return out
 
 
-def _ratio_above_one(psi: ArrayLike, m0: float, mc0: float) -> NDArray[np.float64]:
-    """k J(k^2 m0) / J(m0) for psi > 1, with 1 - k^2 m0 formed without cancellation."""
+def _ratio_above_one(
+    psi: ArrayLike, m0: float, mc0: float, J: Callable = quartic_integral
+) -> NDArray[np.float64]:
+    """k J(k^2 m0) / J(m0) for psi > 1, with 1 - k^2 m0 formed without cancellation
+    (J: ``quartic_integral``, or ``quartic_integral_float`` for one float psi)."""
     k2 = 2.0 / (psi + 1.0)
-    j1 = quartic_integral(k2 * m0, (psi - 1.0) / (psi + 1.0) + k2 * mc0)
-    return np.sqrt(k2) * j1 / quartic_integral(m0, mc0)
+    j1 = J(k2 * m0, (psi - 1.0) / (psi + 1.0) + k2 * mc0)
+    return np.sqrt(k2) * j1 / J(m0, mc0)
