@@ -33,7 +33,10 @@ def _fixed(a: NDArray) -> NDArray:
 
 @dataclass(frozen=True, eq=False)
 class Timeline:
-    """The contact (psi, s = sin(e/2) of ``core.clock``) at the times ``tau`` (radians)."""
+    """The contact (psi, s = sin(e/2) of ``core.clock``) at the times ``tau`` (radians).
+
+    ``tau`` is held, not copied: change it and ask again, and the quantities already
+    computed will not follow (make a new Timeline instead)."""
 
     tau: NDArray[np.float64]
     psi: float
