@@ -9,6 +9,9 @@ Measures
 Serves the app itself with `panel serve` unless EXPLORER_URL is set.
 
     .venv/bin/python benchmarks/app_latency.py [--moves 30] [--seconds 5]
+
+It also prints a yardstick of the machine's speed before and after the run (one
+closed-form contact, in us), so that a slow run can be told from a slow machine.
 """
 
 from __future__ import annotations
@@ -114,18 +117,33 @@ def measure(url: str, moves: int, seconds: float) -> dict[str, float]:
     }
 
 
+def machine_reference() -> float:
+    """Microseconds for one closed-form contact (``closed_form_time``, psi = 0.4,
+    tau0 = pi/6): a yardstick of the machine's speed at the time of the run. On the
+    shared 2-core VM it read ~50 us in its fast phases and ~90 us in its slow ones, and
+    the latency figures move with it."""
+    from core import Contact
+    from core.numerics.metrics import closed_form_time
+
+    return 1e6 * min(closed_form_time(Contact, 0.4, 0.5235987755982988) for _ in range(5))
+
+
 def main() -> None:
     """Command line entry: print the figures."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--moves", type=int, default=30)
     ap.add_argument("--seconds", type=float, default=5.0)
     args = ap.parse_args()
+    before = machine_reference()
     with explorer_server() as url:
         r = measure(url, args.moves, args.seconds)
+    after = machine_reference()
     print(f"slider move -> all plots updated ({r['moves']} moves): "
           f"median {r['median_ms']:.0f} ms, p90 {r['p90_ms']:.0f} ms")
     print(f"animation: {r['fps']:.1f} frames/s shown "
           f"(browser painted {r['paint_fps']:.0f} frames/s)")
+    print(f"machine yardstick (one closed-form contact): {before:.0f} us before, "
+          f"{after:.0f} us after the run")
 
 
 if __name__ == "__main__":
