@@ -196,7 +196,7 @@ class Explorer:
             self.tau_slider.value = tau
 
     def _show_formulas(self, c: Contact, tau: float) -> None:
-        phase = int(np.asarray(c.phase(tau)).reshape(-1)[0])
+        phase = int(c.phase(tau))  # a 0-d array for one tau
         if phase != self._shown_phase:
             self._shown_phase = phase
             self.formulas.object = formulas(phase)

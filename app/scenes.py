@@ -52,11 +52,6 @@ LINE_COLORS = ("#000000", "#D55E00", "#0072B2", "#CC79A7", "#009E73")
 FRAME_LEVEL = "overlay"
 
 
-def phase_name(c: Contact, tau: float) -> str:
-    """Name of the contact phase at tau, as `core.PHASE_NAMES` spells it."""
-    return PHASE_NAMES[int(np.asarray(c.phase(tau)).reshape(-1)[0])]
-
-
 def _style(fig) -> None:
     """Large type, readable on a projector."""
     fig.title.text_font_size = "15pt"
@@ -216,7 +211,7 @@ class TractionScene(Scene):
 
     def update_tau(self, c: Contact, tau: float) -> None:
         self.source.data = inline({k: v[0] for k, v in self.profiles(c, np.array([tau])).items()})
-        style = self.phase_style(int(np.asarray(c.phase(tau)).reshape(-1)[0]))
+        style = self.phase_style(int(c.phase(tau)))
         self.figure.title.text_color = style["title_color"]
         self.figure.title.text = style["title"]  # changes once a phase
 
