@@ -147,6 +147,103 @@ def test_glyph_elements_follow_their_glyphs_after_a_move(browser, url) -> None:
     page.close()
 
 
+#: JavaScript: defines window.__renderer(source, glyph type), the first glyph renderer view
+#: of the named source drawing that glyph, and window.__renderers(), all of them.
+JS_RENDERERS = """() => {
+  window.__renderers = () => {
+    const views = [];
+    const walk = (v) => {
+      if (v.model && v.model.type === "GlyphRenderer") views.push(v);
+      for (const c of v.children()) walk(c);
+    };
+    Object.values(Bokeh.index).forEach(walk);
+    return views;
+  };
+  window.__renderer = (source, type) => window.__renderers().find(
+    (v) => v.model.data_source.name === source && v.model.glyph.type === type);
+}"""
+
+
+def test_variant_glyphs_are_updated_when_they_are_drawn(browser, url) -> None:
+    """Shim 3 (app/browser.py): a slider move leaves the selection, muted, ... variants
+    of a glyph stale; selecting or muting brings them up to date with the base glyph."""
+    page, console = open_explorer(browser, url)
+    assert page.evaluate("() => Bokeh.require('models/glyphs/glyph')"
+                         ".GlyphView.prototype.__zharii_lazy_variants") is True
+    page.evaluate(JS_RENDERERS)
+    psi0 = column(page, "impulse_marker", "psi")[0]
+    page.locator(".noUi-handle").first.focus()
+    page.keyboard.press("ArrowRight")
+    page.wait_for_function("(v) => __col('impulse_marker', 'psi')[0] > v", arg=psi0,
+                           timeout=20_000)
+    page.wait_for_timeout(300)
+    stale = """([s, t]) => { const r = __renderer(s, t);
+      return [r.selection_glyph, r.nonselection_glyph, r.muted_glyph, r.decimated_glyph]
+        .map((g) => g.__zharii_stale === true); }"""
+    assert page.evaluate(stale, ["force_marker", "Scatter"]) == [True] * 4
+    assert page.evaluate(stale, ["force", "Line"]) == [True] * 4
+    # a selection: the marker's variants take the base glyph's current data
+    page.evaluate("() => { __renderer('force_marker', 'Scatter').model.data_source"
+                  ".selected.indices = [0]; }")
+    page.wait_for_function("() => !__renderer('force_marker', 'Scatter')"
+                           ".selection_glyph.__zharii_stale", timeout=5000)
+    same = """([s, t, variant, col]) => { const r = __renderer(s, t);
+      return [Array.from(r.glyph[col]), Array.from(r[variant][col])]; }"""
+    base, sel = page.evaluate(same, ["force_marker", "Scatter", "selection_glyph", "x"])
+    assert sel == base == column(page, "force_marker", "x")
+    # muting a curve: its muted glyph draws the current data
+    page.evaluate("() => { __renderer('force', 'Line').model.muted = true; }")
+    page.wait_for_function("() => !__renderer('force', 'Line').muted_glyph.__zharii_stale",
+                           timeout=5000)
+    base, muted = page.evaluate(same, ["force", "Line", "muted_glyph", "y"])
+    assert muted == base == column(page, "force", "T")
+    assert errors(console) == []
+    page.close()
+
+
+#: JavaScript: [ours, BokehJS's] viewport indices of every marker and circle renderer.
+JS_MASKS = """() => {
+  const marker = Bokeh.require('models/glyphs/marker').MarkerView.prototype;
+  const radial = Bokeh.require('models/glyphs/radial_glyph').RadialGlyphView.prototype;
+  const out = [];
+  for (const r of __renderers()) {
+    const g = r.glyph;
+    const proto = g instanceof marker.constructor ? marker
+      : g instanceof radial.constructor ? radial : null;
+    if (proto == null) continue;
+    out.push([r.model.data_source.name, Array.from(g._mask_data().ones()),
+              Array.from(proto.__zharii_originals._mask_data.call(g).ones())]);
+  }
+  return out;
+}"""
+
+
+def test_marker_viewport_query_equals_bokehs(browser, url) -> None:
+    """Shim 4 (app/browser.py): markers' and circles' viewport indices are BokehJS's own,
+    with the plot as it is, panned away from the marker, and with a reversed axis."""
+    page, console = open_explorer(browser, url)
+    page.evaluate(JS_RENDERERS)
+    views = ("(() => { const p = __renderer('force_marker', 'Scatter').plot_view.model;"
+             " return [p.x_range, p.y_range]; })()")
+    cases = [None, "([x, y]) => { x.start = 10; x.end = 20; }",
+             "([x, y]) => { x.start = 0; x.end = 3; const s = y.start; y.start = y.end;"
+             " y.end = s; }"]
+    seen = []
+    for case in cases:
+        if case:
+            page.evaluate(f"() => ({case})({views})")
+            page.wait_for_timeout(300)
+        masks = page.evaluate(JS_MASKS)
+        assert len(masks) >= 5, masks  # markers in four plots and the disc's circle
+        for name, ours, theirs in masks:
+            assert ours == theirs, (case, name)
+        seen.append(dict((name, ours) for name, ours, _ in masks)["force_marker"])
+    n = len(column(page, "force_marker", "x"))
+    assert seen == [list(range(n)), [], list(range(n))], seen  # all, panned away, all
+    assert errors(console) == []
+    page.close()
+
+
 def test_number_box_follows_the_slider_and_takes_exact_values(browser, url) -> None:
     """The box shows each slider move (linked in the browser, no server echo); a value
     typed in it, even beyond the slider's range, reaches the plots and the slider."""
