@@ -9,6 +9,11 @@ Measures
 Serves the app itself with `panel serve` unless EXPLORER_URL is set.
 
     .venv/bin/python benchmarks/app_latency.py [--moves 30] [--seconds 5]
+                                               [--width 1600] [--height 1400]
+
+Plots out of view are painted when they come into view (app/browser.py, shim 5), so
+the page size matters: the figures say how many plots were in view.  A tall page
+(--height 3200) has all of them in view.
 
 It also prints a yardstick of the machine's speed before and after the run (one
 closed-form contact, in us), so that a slow run can be told from a slow machine.
@@ -76,8 +81,22 @@ JS_FPS = """(ms) => new Promise((resolve) => {
 })"""
 
 
-def measure(url: str, moves: int, seconds: float) -> dict[str, float]:
-    """Run both measurements against the explorer at `url`."""
+#: [plots in view, plots] (the shim's IntersectionObserver state; displayed plots only).
+JS_IN_VIEW = """() => {
+  const {PlotView} = Bokeh.require("models/plots/plot");
+  const plots = [];
+  const walk = (v) => {
+    if (v instanceof PlotView && v.is_displayed) plots.push(v);
+    for (const c of v.children()) walk(c);
+  };
+  Object.values(Bokeh.index).forEach(walk);
+  return [plots.filter((v) => v.__zharii_in_view !== false).length, plots.length];
+}"""
+
+
+def measure(url: str, moves: int, seconds: float, width: int = 1600,
+            height: int = 1400) -> dict[str, float]:
+    """Run both measurements against the explorer at `url` in a `width` x `height` page."""
     from playwright.sync_api import sync_playwright
 
     path = chromium_path()
@@ -85,7 +104,7 @@ def measure(url: str, moves: int, seconds: float) -> dict[str, float]:
         raise SystemExit("no /usr/bin/chromium (apt-get install chromium)")
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path=path, args=CHROMIUM_ARGS)
-        page, _ = open_explorer(browser, url)
+        page, _ = open_explorer(browser, url, width=width, height=height)
         page.wait_for_timeout(2000)
         handle = page.locator(".noUi-handle").first  # psi
         handle.focus()
@@ -97,6 +116,7 @@ def measure(url: str, moves: int, seconds: float) -> dict[str, float]:
             if i >= 2:  # the first moves warm up caches on both sides
                 times.append(ms)
             page.wait_for_timeout(250)
+        in_view = page.evaluate(JS_IN_VIEW)
         page.get_by_role("button", name="▶ Play").click()
         # the player starts when the contact's frames arrive
         page.wait_for_function("() => (__col('frames', 'tau') || []).length > 0",
@@ -114,6 +134,7 @@ def measure(url: str, moves: int, seconds: float) -> dict[str, float]:
         "p90_ms": ok[max(0, round(0.9 * len(ok)) - 1)],
         "fps": fps["changes"] / fps["seconds"],
         "paint_fps": fps["frames"] / fps["seconds"],
+        "in_view": in_view,
     }
 
 
@@ -133,11 +154,15 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--moves", type=int, default=30)
     ap.add_argument("--seconds", type=float, default=5.0)
+    ap.add_argument("--width", type=int, default=1600)
+    ap.add_argument("--height", type=int, default=1400)
     args = ap.parse_args()
     before = machine_reference()
     with explorer_server() as url:
-        r = measure(url, args.moves, args.seconds)
+        r = measure(url, args.moves, args.seconds, args.width, args.height)
     after = machine_reference()
+    shown, plots = r["in_view"]
+    print(f"page {args.width}x{args.height}: {shown} of {plots} plots in view")
     print(f"slider move -> all plots updated ({r['moves']} moves): "
           f"median {r['median_ms']:.0f} ms, p90 {r['p90_ms']:.0f} ms")
     print(f"animation: {r['fps']:.1f} frames/s shown "

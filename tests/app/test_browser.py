@@ -131,8 +131,9 @@ JS_MISPLACED = """() => {
 
 def test_glyph_elements_follow_their_glyphs_after_a_move(browser, url) -> None:
     """The shim writes glyph renderers' element positions after the plots have painted
-    (app/browser.py); they must still end where BokehJS puts them."""
-    page, console = open_explorer(browser, url)
+    (app/browser.py); they must still end where BokehJS puts them.  (A tall page: plots
+    out of view are painted, and their elements placed, when they come into view.)"""
+    page, console = open_explorer(browser, url, height=3200)
     assert page.evaluate("() => Bokeh.require('models/renderers/glyph_renderer')"
                          ".GlyphRendererView.prototype.__zharii_late_position") is True
     psi0 = column(page, "impulse_marker", "psi")[0]
@@ -240,6 +241,50 @@ def test_marker_viewport_query_equals_bokehs(browser, url) -> None:
         seen.append(dict((name, ours) for name, ours, _ in masks)["force_marker"])
     n = len(column(page, "force_marker", "x"))
     assert seen == [list(range(n)), [], list(range(n))], seen  # all, panned away, all
+    assert errors(console) == []
+    page.close()
+
+
+#: JavaScript: whether a renderer's line is drawn from its current data (screen
+#: coordinates mapped from the data it holds now).
+JS_PAINTED = """([s, t]) => {
+  const r = __renderer(s, t);
+  const sy = r.glyph.sy, want = r.yscale.v_compute(r.glyph.y);
+  return sy != null && sy.length === want.length
+    && Array.from(sy).every((v, i) => v === want[i] || Math.abs(v - want[i]) < 1e-6);
+}"""
+
+
+def test_plots_out_of_view_are_painted_when_they_come_into_view(browser, url) -> None:
+    """Shim 5 (app/browser.py): a move paints the plots in view; one out of view gets
+    its data and is painted when scrolled into view, or before the page is printed."""
+    page, console = open_explorer(browser, url, height=900)
+    assert page.evaluate("() => Bokeh.require('models/plots/plot')"
+                         ".PlotView.prototype.__zharii_paint_in_view") is True
+    page.evaluate(JS_RENDERERS)
+
+    def move() -> None:
+        psi0 = column(page, "impulse_marker", "psi")[0]
+        page.locator(".noUi-handle").first.focus()
+        page.keyboard.press("ArrowRight")
+        page.wait_for_function("(v) => __col('impulse_marker', 'psi')[0] > v", arg=psi0,
+                               timeout=20_000)
+        page.wait_for_timeout(500)
+
+    move()
+    assert page.evaluate(JS_PAINTED, ["traction", "Line"]) is True
+    assert page.evaluate(JS_PAINTED, ["motion", "Line"]) is False  # below the fold
+    assert page.evaluate("() => __renderer('motion', 'Line').plot_view"
+                         ".__zharii_deferred") is True
+    page.evaluate("() => __renderer('motion', 'Line').plot_view.el.scrollIntoView()")
+    page.wait_for_function(f"() => ({JS_PAINTED})(['motion', 'Line'])", timeout=5000)
+    # out of view again, then printed: painted before the page is
+    page.evaluate("() => __renderer('traction', 'Line').plot_view.el.scrollIntoView()")
+    page.wait_for_timeout(300)
+    move()
+    assert page.evaluate(JS_PAINTED, ["motion", "Line"]) is False
+    assert page.evaluate(f"() => {{ window.dispatchEvent(new Event('beforeprint'));"
+                         f" return ({JS_PAINTED})(['motion', 'Line']); }}") is True
     assert errors(console) == []
     page.close()
 
