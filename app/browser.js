@@ -195,3 +195,61 @@ patch("paint_in_view", {repaint: ["models/plots/plot", "PlotView", "repaint"]}, 
     },
   };
 });
+
+// 6. axis sizes: measured again only when something that sizes them changed.  On every
+// paint BokehJS checks whether an axis needs more or less room than it has, measuring
+// its tick labels and title (canvas text metrics and CSS reads); here the size from the
+// last measurement is reused while the axis, its ticker and formatter models (watched
+// through their change signals), its ranges' ends, its side and the plot's base font
+// size are the same.  Only for that check: a forced layout (resize) measures afresh.
+// Axes with TeX titles or label overrides (sizes that change when MathJax is done) are
+// always measured.
+patch("axis_sizes", {
+  get_size: ["models/axes/axis", "AxisView", "get_size"],
+  check: ["models/plots/plot", "PlotView", "_invalidate_layout_if_needed"],
+}, (orig) => {
+  const generation = (view) => {  // bumped on any change of the models that size the axis
+    const {ticker, formatter} = view.model;
+    const seen = view.__zharii_watch;
+    if (seen != null && seen.ticker === ticker && seen.formatter === formatter) {
+      return seen.generation;
+    }
+    const now = {ticker, formatter, generation: (seen?.generation ?? 0) + 1};
+    const bump = () => { now.generation += 1; };
+    for (const model of [view.model, ticker, formatter]) { view.connect(model.change, bump); }
+    view.__zharii_watch = now;
+    return now.generation;
+  };
+  const key = (view) => {  // null: not memoised
+    const label = view._axis_label_view;
+    if ((label != null && label.model.type !== "PlainText") || view._major_label_views.size > 0) {
+      return null;
+    }
+    const parts = [generation(view), view.plot_view.base_font_size, view.panel.side];
+    for (const range of view.ranges) {
+      if (range.factors !== undefined) { return null; }
+      parts.push(range.start, range.end);
+    }
+    return parts.join(",");
+  };
+  return {
+    get_size() {
+      const now = key(this);
+      if (this.plot_view.__zharii_checking && now !== null && now === this.__zharii_size_key) {
+        return {...this.__zharii_size};
+      }
+      const size = orig.get_size.call(this);
+      this.__zharii_size_key = now;
+      this.__zharii_size = {...size};
+      return size;
+    },
+    check() {
+      this.__zharii_checking = !this._needs_layout;
+      try {
+        return orig.check.call(this);
+      } finally {
+        this.__zharii_checking = false;
+      }
+    },
+  };
+});

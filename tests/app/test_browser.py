@@ -289,6 +289,75 @@ def test_plots_out_of_view_are_painted_when_they_come_into_view(browser, url) ->
     page.close()
 
 
+#: JavaScript: for every displayed axis, [title, size the paint-time check gets, size
+#: measured afresh by BokehJS's own get_size, whether a size is remembered].
+JS_AXIS_SIZES = """() => {
+  const {PlotView} = Bokeh.require("models/plots/plot");
+  const {AxisView} = Bokeh.require("models/axes/axis");
+  const measure = AxisView.prototype.__zharii_originals.get_size;
+  const plots = [];
+  const walk = (v) => {
+    if (v instanceof PlotView && v.is_displayed) plots.push(v);
+    for (const c of v.children()) walk(c);
+  };
+  Object.values(Bokeh.index).forEach(walk);
+  const out = [];
+  for (const plot of plots) {
+    for (const panel of plot.model.side_panels) {
+      const axis = plot.renderer_views.get(panel);
+      if (!(axis instanceof AxisView)) continue;
+      plot.__zharii_checking = true;
+      const checked = axis.get_size();
+      plot.__zharii_checking = false;
+      const fresh = measure.call(axis);
+      out.push([String(axis.model.axis_label), [checked.width, checked.height],
+                [fresh.width, fresh.height], axis.__zharii_size_key != null]);
+    }
+  }
+  return out;
+}"""
+
+
+def test_remembered_axis_sizes_equal_fresh_measurements(browser, url) -> None:
+    """Shim 6 (app/browser.py): after moves, a preset that changes every range, and a
+    new axis title, the size the paint-time check gets is what BokehJS measures."""
+    page, console = open_explorer(browser, url, height=3200)
+    assert page.evaluate("() => Bokeh.require('models/axes/axis')"
+                         ".AxisView.prototype.__zharii_axis_sizes") is True
+
+    def check() -> list:
+        sizes = page.evaluate(JS_AXIS_SIZES)
+        assert len(sizes) >= 12, sizes  # two axes on each of six plots at least
+        for title, checked, fresh, _ in sizes:
+            assert checked == fresh, title
+        assert sum(remembered for *_, remembered in sizes) >= 12
+        return sizes
+
+    page.locator(".noUi-handle").first.focus()
+    for _ in range(3):
+        page.keyboard.press("ArrowRight")
+        page.wait_for_timeout(200)
+    page.wait_for_timeout(500)
+    check()
+    page.locator("select").first.select_option(label="Fig. 7b: T(tau), psi = 2.41, 6.46, 28.35")
+    page.wait_for_function("() => __col('impulse_marker', 'psi')[0] === 6.46", timeout=20_000)
+    page.wait_for_timeout(800)
+    before = {t: fresh for t, _, fresh, _ in check()}
+    # the force plot's y axis: wider tick labels, then a two-line title
+    force_plot = """Bokeh.documents[0].all_models.values().find((m) => m.renderers
+        && m.renderers.includes(Bokeh.documents[0].get_model_by_name('force_T')))"""
+    page.evaluate(f"() => {{ const r = ({force_plot}).y_range; r.start = -12345; r.end = 12345; }}")
+    page.wait_for_timeout(800)
+    wide = {t: fresh for t, _, fresh, _ in check()}
+    page.evaluate(f"() => {{ ({force_plot}).left[0].axis_label = 'T / T0\\nsecond line'; }}")
+    page.wait_for_timeout(800)
+    tall = {t: fresh for t, _, fresh, _ in check()}
+    # [width, height] with the extent across a vertical axis in height
+    assert before["T / T₀"][1] < wide["T / T₀"][1] < tall["T / T0\nsecond line"][1]
+    assert errors(console) == []
+    page.close()
+
+
 def test_number_box_follows_the_slider_and_takes_exact_values(browser, url) -> None:
     """The box shows each slider move (linked in the browser, no server echo); a value
     typed in it, even beyond the slider's range, reaches the plots and the slider."""
