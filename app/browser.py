@@ -47,8 +47,8 @@ it was, and the browser tests check that.
 
 3 and 4 together: JavaScript per slider move 50 -> 35 ms (CPU profile of ten moves),
 81 vs 85 ms median to all plots updated, 38 vs 30 frames/s (paired runs); 5 on top
-(1600x1400 page, two plots out of view): 76 vs 80 ms, 42 vs 37 frames/s; 6 on top:
-59.5 vs 71.8 ms, 44.5 vs 42.5 frames/s.
+(1600x1400 page, two plots out of view): 76 vs 80 ms, 42 vs 37 frames/s; 6 on top
+(two servers, 30 moves per arm): 60.6 vs 67.7 ms, 45.6 vs 39.8 frames/s.
 
 If a future BokehJS renames what these replace, the shim leaves that part alone, says
 so in the console, and only speed is lost.
