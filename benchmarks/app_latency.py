@@ -84,12 +84,7 @@ JS_FPS = """(ms) => new Promise((resolve) => {
 #: [plots in view, plots] (the shim's IntersectionObserver state; displayed plots only).
 JS_IN_VIEW = """() => {
   const {PlotView} = Bokeh.require("models/plots/plot");
-  const plots = [];
-  const walk = (v) => {
-    if (v instanceof PlotView && v.is_displayed) plots.push(v);
-    for (const c of v.children()) walk(c);
-  };
-  Object.values(Bokeh.index).forEach(walk);
+  const plots = __views((v) => v instanceof PlotView && v.is_displayed);
   return [plots.filter((v) => v.__zharii_in_view !== false).length, plots.length];
 }"""
 

@@ -89,7 +89,10 @@ def explorer_server() -> Iterator[str]:
         log.close()
 
 
-#: JavaScript: defines window.__col(name, col), a data column of the named model.
+#: JavaScript: defines window.__col(name, col), a data column of the named model;
+#: window.__views(keep), every BokehJS view of the page that `keep` accepts;
+#: window.__renderers(), every glyph renderer view; and window.__renderer(source,
+#: glyph type), the first glyph renderer view of the named source drawing that glyph.
 JS_HELPERS = """() => {
   window.__col = (name, col) => {
     const m = window.Bokeh.documents[0].get_model_by_name(name);
@@ -97,6 +100,19 @@ JS_HELPERS = """() => {
     const v = m.data instanceof Map ? m.data.get(col) : m.data[col];
     return v == null ? null : Array.from(v);
   };
+  window.__views = (keep) => {
+    const views = [];
+    const walk = (v) => {
+      if (keep(v)) views.push(v);
+      for (const c of v.children()) walk(c);
+    };
+    Object.values(window.Bokeh.index).forEach(walk);
+    return views;
+  };
+  window.__renderers = () => window.__views(
+    (v) => v.model != null && v.model.type === "GlyphRenderer");
+  window.__renderer = (source, type) => window.__renderers().find(
+    (v) => v.model.data_source.name === source && v.model.glyph.type === type);
 }"""
 
 #: JavaScript: true once the explorer's sources exist and hold data.

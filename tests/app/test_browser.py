@@ -108,17 +108,21 @@ def test_keyboard_slider_changes_plot_data(browser, url) -> None:
     page.close()
 
 
+def step_psi(page) -> float:
+    """Press ArrowRight on the psi slider and wait until the plots' data follow; the new psi."""
+    psi0 = column(page, "impulse_marker", "psi")[0]
+    page.locator(".noUi-handle").first.focus()
+    page.keyboard.press("ArrowRight")
+    page.wait_for_function("(v) => __col('impulse_marker', 'psi')[0] > v", arg=psi0,
+                           timeout=20_000)
+    return column(page, "impulse_marker", "psi")[0]
+
+
 #: Glyph renderer views whose element is not where their bounding box is.
 JS_MISPLACED = """() => {
-  const views = [];
-  const walk = (v) => {
-    if (v.model && v.model.type === "GlyphRenderer") views.push(v);
-    for (const c of v.children()) walk(c);
-  };
-  Object.values(Bokeh.index).forEach(walk);
   const bad = [];
   let placed = 0;
-  for (const v of views) {
+  for (const v of __renderers()) {
     const b = v.bbox;
     if (b == null || !b.is_valid || b.width + b.height === 0) continue;  // never placed
     const css = (v.position.css || "").replace(/\\s+/g, " ");
@@ -136,33 +140,12 @@ def test_glyph_elements_follow_their_glyphs_after_a_move(browser, url) -> None:
     page, console = open_explorer(browser, url, height=3200)
     assert page.evaluate("() => Bokeh.require('models/renderers/glyph_renderer')"
                          ".GlyphRendererView.prototype.__zharii_late_position") is True
-    psi0 = column(page, "impulse_marker", "psi")[0]
-    page.locator(".noUi-handle").first.focus()
-    page.keyboard.press("ArrowRight")
-    page.wait_for_function("(v) => __col('impulse_marker', 'psi')[0] > v", arg=psi0,
-                           timeout=20_000)
+    step_psi(page)
     page.wait_for_timeout(500)
     where = page.evaluate(JS_MISPLACED)
     assert where["bad"] == [] and where["placed"] > 20, where
     assert errors(console) == []
     page.close()
-
-
-#: JavaScript: defines window.__renderer(source, glyph type), the first glyph renderer view
-#: of the named source drawing that glyph, and window.__renderers(), all of them.
-JS_RENDERERS = """() => {
-  window.__renderers = () => {
-    const views = [];
-    const walk = (v) => {
-      if (v.model && v.model.type === "GlyphRenderer") views.push(v);
-      for (const c of v.children()) walk(c);
-    };
-    Object.values(Bokeh.index).forEach(walk);
-    return views;
-  };
-  window.__renderer = (source, type) => window.__renderers().find(
-    (v) => v.model.data_source.name === source && v.model.glyph.type === type);
-}"""
 
 
 def test_variant_glyphs_are_updated_when_they_are_drawn(browser, url) -> None:
@@ -171,12 +154,7 @@ def test_variant_glyphs_are_updated_when_they_are_drawn(browser, url) -> None:
     page, console = open_explorer(browser, url)
     assert page.evaluate("() => Bokeh.require('models/glyphs/glyph')"
                          ".GlyphView.prototype.__zharii_lazy_variants") is True
-    page.evaluate(JS_RENDERERS)
-    psi0 = column(page, "impulse_marker", "psi")[0]
-    page.locator(".noUi-handle").first.focus()
-    page.keyboard.press("ArrowRight")
-    page.wait_for_function("(v) => __col('impulse_marker', 'psi')[0] > v", arg=psi0,
-                           timeout=20_000)
+    step_psi(page)
     page.wait_for_timeout(300)
     stale = """([s, t]) => { const r = __renderer(s, t);
       return [r.selection_glyph, r.nonselection_glyph, r.muted_glyph, r.decimated_glyph]
@@ -223,7 +201,6 @@ def test_marker_viewport_query_equals_bokehs(browser, url) -> None:
     """Shim 4 (app/browser.py): markers' and circles' viewport indices are BokehJS's own,
     with the plot as it is, panned away from the marker, and with a reversed axis."""
     page, console = open_explorer(browser, url)
-    page.evaluate(JS_RENDERERS)
     views = ("(() => { const p = __renderer('force_marker', 'Scatter').plot_view.model;"
              " return [p.x_range, p.y_range]; })()")
     cases = [None, "([x, y]) => { x.start = 10; x.end = 20; }",
@@ -261,17 +238,9 @@ def test_plots_out_of_view_are_painted_when_they_come_into_view(browser, url) ->
     page, console = open_explorer(browser, url, height=900)
     assert page.evaluate("() => Bokeh.require('models/plots/plot')"
                          ".PlotView.prototype.__zharii_paint_in_view") is True
-    page.evaluate(JS_RENDERERS)
 
-    def move() -> None:
-        psi0 = column(page, "impulse_marker", "psi")[0]
-        page.locator(".noUi-handle").first.focus()
-        page.keyboard.press("ArrowRight")
-        page.wait_for_function("(v) => __col('impulse_marker', 'psi')[0] > v", arg=psi0,
-                               timeout=20_000)
-        page.wait_for_timeout(500)
-
-    move()
+    step_psi(page)
+    page.wait_for_timeout(500)
     assert page.evaluate(JS_PAINTED, ["traction", "Line"]) is True
     assert page.evaluate(JS_PAINTED, ["motion", "Line"]) is False  # below the fold
     assert page.evaluate("() => __renderer('motion', 'Line').plot_view"
@@ -281,7 +250,8 @@ def test_plots_out_of_view_are_painted_when_they_come_into_view(browser, url) ->
     # out of view again, then printed: painted before the page is
     page.evaluate("() => __renderer('traction', 'Line').plot_view.el.scrollIntoView()")
     page.wait_for_timeout(300)
-    move()
+    step_psi(page)
+    page.wait_for_timeout(500)
     assert page.evaluate(JS_PAINTED, ["motion", "Line"]) is False
     assert page.evaluate(f"() => {{ window.dispatchEvent(new Event('beforeprint'));"
                          f" return ({JS_PAINTED})(['motion', 'Line']); }}") is True
@@ -295,12 +265,7 @@ JS_AXIS_SIZES = """() => {
   const {PlotView} = Bokeh.require("models/plots/plot");
   const {AxisView} = Bokeh.require("models/axes/axis");
   const measure = AxisView.prototype.__zharii_originals.get_size;
-  const plots = [];
-  const walk = (v) => {
-    if (v instanceof PlotView && v.is_displayed) plots.push(v);
-    for (const c of v.children()) walk(c);
-  };
-  Object.values(Bokeh.index).forEach(walk);
+  const plots = __views((v) => v instanceof PlotView && v.is_displayed);
   const out = [];
   for (const plot of plots) {
     for (const panel of plot.model.side_panels) {
@@ -363,12 +328,7 @@ def test_number_box_follows_the_slider_and_takes_exact_values(browser, url) -> N
     typed in it, even beyond the slider's range, reaches the plots and the slider."""
     page, console = open_explorer(browser, url)
     box = page.locator("input.bk-input").first  # the psi box, above the psi slider
-    page.locator(".noUi-handle").first.focus()
-    psi0 = column(page, "impulse_marker", "psi")[0]
-    page.keyboard.press("ArrowRight")
-    page.wait_for_function("(v) => __col('impulse_marker', 'psi')[0] > v", arg=psi0,
-                           timeout=20_000)
-    psi = column(page, "impulse_marker", "psi")[0]
+    psi = step_psi(page)
     assert float(box.input_value()) == pytest.approx(psi, abs=5e-4)  # shown to 3 places
     box.fill("250.5")
     box.press("Enter")
