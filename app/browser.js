@@ -209,16 +209,15 @@ patch("axis_sizes", {
   check: ["models/plots/plot", "PlotView", "_invalidate_layout_if_needed"],
 }, (orig) => {
   const generation = (view) => {  // bumped on any change of the models that size the axis
-    const {ticker, formatter} = view.model;
-    const seen = view.__zharii_watch;
-    if (seen != null && seen.ticker === ticker && seen.formatter === formatter) {
-      return seen.generation;
+    const watch = view.__zharii_watch ??= {generation: 0, models: new Set()};
+    for (const model of [view.model, view.model.ticker, view.model.formatter]) {
+      if (!watch.models.has(model)) {  // first seen (a new ticker or formatter: a change)
+        watch.models.add(model);
+        watch.generation += 1;
+        view.connect(model.change, () => { watch.generation += 1; });
+      }
     }
-    const now = {ticker, formatter, generation: (seen?.generation ?? 0) + 1};
-    const bump = () => { now.generation += 1; };
-    for (const model of [view.model, ticker, formatter]) { view.connect(model.change, bump); }
-    view.__zharii_watch = now;
-    return now.generation;
+    return watch.generation;
   };
   const key = (view) => {  // null: not memoised
     const label = view._axis_label_view;
