@@ -13,14 +13,14 @@ PYTHON ?= $(shell for p in python3.13 python3.12 \
 	$$(ls -d "$$(pyenv root 2>/dev/null)"/versions/3.1[2-9]*/bin/python3 2>/dev/null) python3; do \
 	"$$p" -c 'import sys; sys.exit(sys.version_info < (3, 12))' >/dev/null 2>&1 && { echo "$$p"; break; }; done)
 
-.PHONY: venv serve test test-core test-app lint bench browser docker-smoke clean
+.PHONY: venv serve test test-core test-app lint bench browser docker-smoke clean lock
 
-$(VENV)/.installed: pyproject.toml
+$(VENV)/.installed: pyproject.toml constraints.txt
 	@test -n "$(PYTHON)" || { echo "error: no Python >= 3.12 found; install one or pass PYTHON=/path/to/python3.12" >&2; exit 1; }
 	@echo "using $(PYTHON) ($$($(PYTHON) --version))"
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e '.[app,test]'
+	$(PY) -m pip install --quiet -c constraints.txt -e '.[app,test,bench]'
 	@touch $@
 
 venv: $(VENV)/.installed
@@ -52,6 +52,14 @@ bench: venv
 
 docker-smoke:
 	bash docker/smoke.sh
+
+# Re-pin the stack after a change of pyproject's requirements: a fresh environment
+# with the newest versions pyproject allows, frozen into constraints.txt.
+lock:
+	rm -rf .venv-lock && $(PYTHON) -m venv .venv-lock
+	.venv-lock/bin/pip install --quiet -e '.[app,test,bench]'
+	{ sed -n '1,/^$$/p' constraints.txt | grep '^#'; .venv-lock/bin/pip freeze --exclude-editable | grep -v '^-e'; } > constraints.txt.new
+	mv constraints.txt.new constraints.txt && rm -rf .venv-lock
 
 clean:
 	rm -rf $(VENV) .pytest_cache .ruff_cache .hypothesis
