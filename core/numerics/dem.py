@@ -1,4 +1,5 @@
-"""Discrete-element tangential spring models, scalar and undamped, as the codes run them.
+"""Discrete-element tangential spring models, scalar and undamped, as the codes run them;
+compiled with numba.
 
 Every model integrates the same prescribed drive with a fixed time step. The relative
 tangential velocity of the contact is that of the lower sphere's centre,
@@ -12,26 +13,36 @@ k_t a = 2 G* a with G* = 2 G / (2 - nu). In units of T0 / u0 (eqs 23, 37):
     k_t a = (3/2) psi sqrt(sin tau - s0).
 
 Force on the upper sphere F (units T0), Coulomb cap |F| <= mu P = T0 (sin tau - s0)^{3/2}.
-When the cap is hit, the force is scaled to the cap and the history is reset to the
-elastic part of the capped force (xi = F / (k_t a), or the force itself).
+When the cap is exceeded the force is scaled onto it and the history is reset to the
+elastic part of the capped force. Damping is zero (quasi-static problem).
 
-Rules and sources:
+Rules and sources (one kernel per code, written in that code's arithmetic):
 
-* ``lammps_mindlin``: F = k_t a xi, xi += dxi. LAMMPS src/GRANULAR/gran_sub_mod_tangential.cpp,
-  GranSubModTangentialMindlin::calculate_forces (mindlin_force = mindlin_rescale = 0).
-* ``lammps_mindlin_force``: history is the force, F += k_t a dxi (mindlin_force = 1,
-  ``hist_increment = -k_scaled * dt * vtr``).
-* ``lammps_mindlin_rescale``: as mindlin, but before the update the history is scaled by
-  a / a_prev whenever a < a_prev (history[3] holds the previous contact radius).
+* ``lammps_mindlin``: history xi += v dt, F = -k_t a xi. LAMMPS
+  src/GRANULAR/gran_sub_mod_tangential.cpp, GranSubModTangentialMindlin::calculate_forces
+  (mindlin_force = mindlin_rescale = 0): if |F| > Fscrit, F *= Fscrit / |F| and
+  xi = -F / (k_t a).
+* ``lammps_mindlin_force``: the history is the force, F += -k_t a v dt
+  (``mindlin/force``: mindlin_force = 1).
+* ``lammps_mindlin_rescale``: as mindlin, but before the update the history is scaled
+  by a / a_prev whenever a < a_prev (history[3] holds the previous contact radius).
 * ``lammps_mindlin_rescale_force``: force history, rescaled by a / a_prev on unloading.
+* ``lammps_linear_history``: GranSubModTangentialLinearHistory: as mindlin with a
+  constant k_t instead of k_t a (the same file: "the same as the base Mindlin
+  calculation except k isn't scaled by contact radius"). k_t is a user input in LAMMPS;
+  here it is the Mindlin stiffness at the largest contact radius, 8 G_eff a*, i.e.
+  (3/2) psi sqrt(1 - s0) in T0 / u0.
 * ``liggghts_history``: LIGGGHTS-PUBLIC src/tangential_model_history.h with the Hertz
   normal model src/normal_model_hertz.h (kt = 8 Geff sqrt(reff deltan)): shear += vtr dt,
-  F = -kt shear, capped at xmu Fn with shear = -F / kt. For this scalar undamped loading
-  it performs the same arithmetic as ``lammps_mindlin``.
+  Ft = -kt shear; if kt |shear| > xmu Fn, Ft *= xmu Fn / (kt |shear|) and
+  shear = -Ft / kt. The rule is LAMMPS mindlin's; the arithmetic is LIGGGHTS'.
 * ``direnzo``: Di Renzo & Di Maio, Chem. Eng. Sci. 60 (2005) 1303-1312, "An improved
   integral non-linear model for the contact of particles in distinct element
   simulations": F = (2/3) k_t a xi (the secant of Mindlin's no-slip loading curve),
   capped at mu P with the history rescaled as in the codes above.
+
+Sign: the history here holds the drive displacement xi = -(relative velocity) dt of the
+codes, so that F = +k_t a xi is the force on the upper sphere (eq 37's sign).
 """
 
 from __future__ import annotations
@@ -40,9 +51,9 @@ import math
 from collections.abc import Callable
 
 import numpy as np
+from numba import njit
 from numpy.typing import NDArray
 
-from core.numerics.loading import hertz_force, impulse_ratio_trapezoid
 from core.numerics.result import ContactLike, check_resolution, contact_parameters
 
 DESCRIPTIONS: dict[str, str] = {
@@ -51,19 +62,143 @@ DESCRIPTIONS: dict[str, str] = {
     "lammps_mindlin_rescale": "LAMMPS mindlin_rescale: xi scaled by a/a_prev on unloading",
     "lammps_mindlin_rescale_force": "LAMMPS mindlin_rescale/force: F scaled by a/a_prev "
                                     "on unloading",
+    "lammps_linear_history": "LAMMPS granular linear_history: F = -k_t xi with constant "
+                             "k_t = 8 G_eff a*, capped at mu P",
     "liggghts_history": "LIGGGHTS tangential_model_history with Hertz kt = 8 G_eff a",
     "direnzo": "Di Renzo & Di Maio (2005): F = -(2/3) k_t a xi, capped at mu P",
 }
 
-# (force_history, rescale, stiffness factor) per model
-_RULES: dict[str, tuple[bool, bool, float]] = {
-    "lammps_mindlin": (False, False, 1.0),
-    "lammps_mindlin_force": (True, False, 1.0),
-    "lammps_mindlin_rescale": (False, True, 1.0),
-    "lammps_mindlin_rescale_force": (True, True, 1.0),
-    "liggghts_history": (False, False, 1.0),
-    "direnzo": (False, False, 2.0 / 3.0),
+# model codes of the compiled driver
+LAMMPS_MINDLIN, LAMMPS_FORCE, LAMMPS_RESCALE, LAMMPS_RESCALE_FORCE, LAMMPS_LINEAR = range(5)
+LIGGGHTS, DIRENZO = 5, 6
+MODELS: dict[str, int] = {
+    "lammps_mindlin": LAMMPS_MINDLIN,
+    "lammps_mindlin_force": LAMMPS_FORCE,
+    "lammps_mindlin_rescale": LAMMPS_RESCALE,
+    "lammps_mindlin_rescale_force": LAMMPS_RESCALE_FORCE,
+    "lammps_linear_history": LAMMPS_LINEAR,
+    "liggghts_history": LIGGGHTS,
+    "direnzo": DIRENZO,
 }
+
+
+@njit(cache=True)
+def lammps(psi, tau0, tau, force_history, rescale, constant_k):
+    """LAMMPS granular tangential models (mindlin, mindlin/force, mindlin_rescale,
+    mindlin_rescale/force, linear_history) over the times ``tau``; returns F / T0."""
+    s0 = math.sin(tau0)
+    kfac = 1.5 * psi
+    k_const = kfac * math.sqrt(1.0 - s0)
+    hist = 0.0
+    a_prev = 0.0  # history[3]
+    out = np.zeros(tau.size)
+    for k in range(1, tau.size):
+        delta = max(math.sin(tau[k]) - s0, 0.0)
+        if delta <= 0.0:  # out of contact: the codes delete the history
+            hist, a_prev = 0.0, 0.0
+            continue
+        a = math.sqrt(delta)  # a / a* up to the constant sqrt(1 - s0), absorbed in kfac
+        k_scaled = k_const if constant_k else kfac * a
+        fscrit = delta * a  # mu P / T0 = delta^{3/2}
+        if rescale and a < a_prev:
+            hist *= a / a_prev
+        dxi = math.cos(0.5 * (tau[k] + tau[k - 1])) * (tau[k] - tau[k - 1])
+        if force_history:
+            hist += k_scaled * dxi
+        else:
+            hist += dxi
+        if rescale:
+            a_prev = a
+        fs = hist if force_history else k_scaled * hist
+        magfs = abs(fs)
+        if magfs > fscrit:
+            fs *= fscrit / magfs
+            hist = fs if force_history else fs / k_scaled
+        out[k] = fs
+    return out
+
+
+@njit(cache=True)
+def liggghts(psi, tau0, tau):
+    """LIGGGHTS-PUBLIC tangential_model_history (Hertz kt) over ``tau``; returns F / T0."""
+    s0 = math.sin(tau0)
+    kfac = 1.5 * psi
+    shear = 0.0
+    out = np.zeros(tau.size)
+    for k in range(1, tau.size):
+        deltan = max(math.sin(tau[k]) - s0, 0.0)
+        if deltan <= 0.0:  # surfacesClose: shear = 0
+            shear = 0.0
+            continue
+        a = math.sqrt(deltan)
+        kt = kfac * a
+        shear -= math.cos(0.5 * (tau[k] + tau[k - 1])) * (tau[k] - tau[k - 1])  # vtr dt
+        shrmag = abs(shear)
+        ft = -(kt * shear)
+        ft_shear = kt * shrmag
+        ft_friction = deltan * a  # xmu |Fn|
+        if ft_shear > ft_friction:
+            if shrmag != 0.0:
+                ft *= ft_friction / ft_shear
+                shear = -ft / kt
+            else:
+                ft = 0.0
+        out[k] = ft
+    return out
+
+
+@njit(cache=True)
+def direnzo(psi, tau0, tau):
+    """Di Renzo & Di Maio (2005): F = (2/3) k_t a xi, capped; returns F / T0."""
+    s0 = math.sin(tau0)
+    kfac = psi  # (2/3) (3/2) psi
+    xi = 0.0
+    out = np.zeros(tau.size)
+    for k in range(1, tau.size):
+        delta = max(math.sin(tau[k]) - s0, 0.0)
+        if delta <= 0.0:
+            xi = 0.0
+            continue
+        a = math.sqrt(delta)
+        kt = kfac * a
+        xi += math.cos(0.5 * (tau[k] + tau[k - 1])) * (tau[k] - tau[k - 1])
+        force = kt * xi
+        cap = delta * a
+        if abs(force) > cap:
+            force = math.copysign(cap, force)
+            xi = force / kt
+        out[k] = force
+    return out
+
+
+@njit(cache=True)
+def forces(model, psi, tau0, tau):
+    """F / T0 of ``model`` (a code of ``MODELS``) over the times ``tau``."""
+    if model == LIGGGHTS:
+        return liggghts(psi, tau0, tau)
+    if model == DIRENZO:
+        return direnzo(psi, tau0, tau)
+    return lammps(psi, tau0, tau, model == LAMMPS_FORCE or model == LAMMPS_RESCALE_FORCE,
+                  model == LAMMPS_RESCALE or model == LAMMPS_RESCALE_FORCE,
+                  model == LAMMPS_LINEAR)
+
+
+@njit(cache=True)
+def contact(model, psi, tau0, steps):
+    """One contact from (psi, tau0) with ``steps`` equal time steps over
+    [tau0, pi - tau0]: returns (tau, F / T0, impulse ratio by the trapezoid rule)."""
+    tau = np.linspace(tau0, np.pi - tau0, steps + 1)
+    F = forces(model, psi, tau0, tau)
+    s0 = math.sin(tau0)
+    f_sum = 0.0
+    p_sum = 0.0
+    for k in range(1, steps):  # equal steps; F and P vanish at both ends
+        f_sum += F[k]
+        p_sum += max(math.sin(tau[k]) - s0, 0.0) ** 1.5
+    f_sum += 0.5 * (F[0] + F[steps])
+    p_sum += 0.5 * (max(math.sin(tau[0]) - s0, 0.0) ** 1.5
+                    + max(math.sin(tau[steps]) - s0, 0.0) ** 1.5)
+    return tau, F, f_sum / p_sum
 
 
 def dem_time_grid(tau0: float, steps: int) -> NDArray[np.float64]:
@@ -71,59 +206,18 @@ def dem_time_grid(tau0: float, steps: int) -> NDArray[np.float64]:
     return np.linspace(tau0, np.pi - tau0, steps + 1)
 
 
-def integrate(psi: float, tau0: float, tau: NDArray[np.float64], *, force_history: bool,
-              rescale: bool, factor: float = 1.0) -> NDArray[np.float64]:
-    """March one spring model over the times ``tau``; returns F / T0 at each time.
-
-    force_history: the history is the force (``/force`` variants) instead of the
-    displacement xi / u0; rescale: scale the history by a / a_prev when a shrinks;
-    factor: multiplies k_t a (2/3 for Di Renzo & Di Maio).
-    """
-    s0 = math.sin(tau0)
-    kfac = 1.5 * psi * factor
-    hist = 0.0
-    a_prev = 0.0
-    out = np.zeros(tau.size)
-    for k in range(1, tau.size):
-        delta = max(math.sin(tau[k]) - s0, 0.0)
-        a = math.sqrt(delta)  # a / a* up to the constant sqrt(1 - s0), absorbed in kfac
-        if delta <= 0.0:
-            hist, a_prev = 0.0, 0.0
-            continue
-        kt_a = kfac * a
-        cap = delta * a  # mu P / T0 = delta^{3/2}
-        if rescale and a < a_prev:
-            hist *= a / a_prev
-        dxi = math.cos(0.5 * (tau[k] + tau[k - 1])) * (tau[k] - tau[k - 1])
-        if force_history:
-            hist += kt_a * dxi
-            force = hist
-        else:
-            hist += dxi
-            force = kt_a * hist
-        if abs(force) > cap:
-            force = math.copysign(cap, force)
-            hist = force if force_history else force / kt_a
-        a_prev = a
-        out[k] = force
-    return out
-
-
 def make_solver(name: str) -> Callable[[ContactLike, int], tuple]:
     """Solver for one DEM model: (contact, steps) -> (tau, T, None, impulse ratio)."""
-    force_history, rescale, factor = _RULES[name]
+    model = MODELS[name]
 
-    def solve(contact: ContactLike, resolution: int) -> tuple:
+    def solve(contact_: ContactLike, resolution: int) -> tuple:
         steps = check_resolution(resolution, maximum=10**7)
-        psi, tau0 = contact_parameters(contact)
-        tau = dem_time_grid(tau0, steps)
-        T = integrate(psi, tau0, tau, force_history=force_history, rescale=rescale,
-                      factor=factor)
-        return tau, T, None, impulse_ratio_trapezoid(tau, T, hertz_force(tau, tau0))
+        psi, tau0 = contact_parameters(contact_)
+        tau, T, ratio = contact(model, psi, tau0, steps)
+        return tau, T, None, ratio
 
-    solve.__doc__ = f"{DESCRIPTIONS[name]} ({steps_doc})"
+    solve.__doc__ = f"{DESCRIPTIONS[name]} (resolution = number of equal time steps)"
     return solve
 
 
-steps_doc = "resolution = number of equal time steps over the contact"
-SOLVERS: dict[str, Callable[[ContactLike, int], tuple]] = {n: make_solver(n) for n in _RULES}
+SOLVERS: dict[str, Callable[[ContactLike, int], tuple]] = {n: make_solver(n) for n in MODELS}

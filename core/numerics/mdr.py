@@ -1,5 +1,5 @@
 """Method of dimensionality reduction (Popov & Hess, "Method of Dimensionality Reduction
-in Contact Mechanics and Friction", Springer 2015, ch. 2-3 and 8).
+in Contact Mechanics and Friction", Springer 2015, ch. 2-3 and 8), compiled with numba.
 
 The 3D contact of two spheres is replaced by a row of N independent springs on a rigid
 1D profile g(x) = x^2 / R* (R* = R / 2), normal stiffness E* dx with E* = G / (1 - nu),
@@ -7,37 +7,58 @@ tangential stiffness G* dx with G* = 2 G / (2 - nu) (two identical bodies; physi
 The indentation d = alpha (eq 8) gives the spring compressions w(x) = d - g(x) and the
 contact radius a^2 = R* d (eq 7). The tangential rule, per spring and time step:
 
-* a spring that enters the contact carries the drive displacement accumulated since it
-  touched (u0 (sin tau - sin tau_touch)),
-* a spring already in contact follows the increment of u_x0 = u0 sin tau (stick),
+* a spring that enters the contact carries the drive accumulated since it touched,
+  drive(t) - drive(t_touch), with drive(t_touch) interpolated linearly in d over the
+  step (exact when the drive is an affine function of d over the step, as for eq 3),
+* a spring already in contact follows the increment of the drive (stick),
 * |G* u| is then capped at mu E* w(x) (slide at the Coulomb limit),
 * a spring leaves the contact (w <= 0) with zero displacement.
 
 Dimensionless form (lengths in a*, w in alpha* = H - h, u in mu E* alpha* / G*):
-w(x) = (sin tau - s0) / (1 - s0) - x^2, drive increment du = psi d(sin tau) / (1 - s0)
-(psi from eq 23), cap |u| <= w, and
+w(x) = d - x^2 with d = (sin tau - s0) / (1 - s0), drive psi sin tau / (1 - s0) (psi from
+eq 23), cap |u| <= w, and
 
-    T / T0 = (3/4) (1 - s0)^{3/2} int u dx,      P / P0 = (3/4) (1 - s0)^{3/2} int w dx,
+    T / T0 = (3/4) (1 - s0)^{3/2} int u dx,      P / P0 = (3/4) (1 - s0)^{3/2} int w dx
 
-(eqs 9, 37). The same axisymmetric approximation underlies the paper, so the method
-converges to eq 39; the spring values are exact at every time step once tau = pi / 2 (the
-only reversal of the drive) is on the grid, so the error is that of the midpoint rule in
-x: ~N^-2. 3D tractions follow from the inverse transform
+(eqs 9, 37). ``march`` takes the approach d and the drive as arrays over time, so any
+drive history (a moving rotor: u0 sin tau - (V / omega)(tau - tau0)) runs through the
+same kernel. For eq 3 each spring value is exact at every time step once tau = pi / 2
+(the only reversal of the drive) is on the grid: T's error is that of the midpoint rule
+in x, ~N^-2, whatever the time step. The impulse (trapezoid rule in time) has its own
+error ~M^-2 in the number M of time steps, so M is chosen separately (``default_steps``).
+Only the springs in contact (a prefix of the row, x < a) are touched at each step.
+3D tractions follow from the inverse transform
 q(r) = -(1/pi) int_r^a q1'(x) / sqrt(x^2 - r^2) dx (``traction``).
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+from numba import njit
 from numpy.typing import ArrayLike, NDArray
 
-from core.numerics.loading import approach, impulse_ratio_trapezoid, time_grid
+from core.numerics.loading import approach, time_grid, trapezoid
 from core.numerics.result import ContactLike, check_resolution, contact_parameters
 
 NAME = "mdr"
 STICK_TOL = 1e-9
 """Slack of the stick test, relative to the largest compression a^2."""
-DESCRIPTION = "Method of dimensionality reduction (Popov & Hess): N springs, stick/slide"
+DESCRIPTION = ("Method of dimensionality reduction (Popov & Hess): N springs, stick/slide "
+               "(compiled)")
+MIN_STEPS = 32
+"""Fewest default time steps (enough to draw T; psi <= 1 needs no more for accuracy)."""
+
+
+def default_steps(n: int) -> int:
+    """Default time steps M for N springs: max(MIN_STEPS, ceil(N / 2)).
+
+    T is exact at every step up to the spring error ~N^-2 whatever M; the impulse adds
+    the trapezoid error ~M^-2 for psi > 1 (none for psi <= 1, where T = psi P spring by
+    spring). With M = N / 2 the two are about equal in absolute error over the benchmark
+    cases; relative error at grazing contact wants M ~ 2-4 N. Pass ``steps`` to choose."""
+    return max(MIN_STEPS, (n + 1) // 2)
 
 
 def spring_positions(n: int) -> NDArray[np.float64]:
@@ -45,87 +66,143 @@ def spring_positions(n: int) -> NDArray[np.float64]:
     return (np.arange(n) + 0.5) / n
 
 
-def step_springs(u: NDArray[np.float64], w: NDArray[np.float64], w_prev: NDArray[np.float64],
-                 du: float, psi: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """One time step of the spring rule; returns (new u, stick margin w - |u_trial|).
+@njit(cache=True)
+def _stick_radius(x, margin, m, d):
+    """Radius b / a* of the central stick zone from the stick margins w - |u_trial| of
+    the m springs in contact (d = a^2).
 
-    u: spring displacements before the step; w, w_prev: compressions after and before;
-    du: drive increment psi d(sin tau) / (1 - s0). Entering springs (w_prev <= 0 < w)
-    carry psi w, the drive since they touched; leaving ones are set to zero.
+    The margin is smooth (a concave quadratic in x) across the stick boundary, so the
+    linear interpolation of its root keeps the O(N^-2) accuracy; when every spring in
+    contact sticks, the root is extrapolated from the last two springs and capped at a
+    (full stick gives b = a). A slipping centre gives b = 0.
     """
-    inside = w > 0.0
-    entering = inside & (w_prev <= 0.0)
-    trial = np.where(entering, psi * w, u + du)
-    margin = w - np.abs(trial)
-    u_new = np.where(inside, np.clip(trial, -w, w), 0.0)
-    return u_new, margin
-
-
-def stick_radius(x: NDArray[np.float64], margin: NDArray[np.float64], a: float) -> float:
-    """Radius b / a* of the central stick zone from the stick margins of the springs.
-
-    The margin w - |u_trial| is smooth (a concave quadratic in x) across the stick
-    boundary, so the linear interpolation of its root keeps the O(N^-2) accuracy; when
-    every spring in contact sticks, the root is extrapolated from the last two springs
-    and capped at a (full stick gives b = a). A slipping centre gives b = 0.
-    """
-    inside = x < a
-    m = margin[inside]
-    tol = STICK_TOL * max(a * a, 1e-300)  # psi = 1 rides the Coulomb limit exactly
-    if m.size == 0 or m[0] < -tol:
+    if d <= 0.0:
         return 0.0
-    neg = np.flatnonzero(m < -tol)
-    if neg.size == 0:
-        if m.size < 2 or m[-1] <= tol or m[-2] <= m[-1]:
+    a = math.sqrt(d)
+    tol = STICK_TOL * max(d, 1e-300)  # psi = 1 rides the Coulomb limit exactly
+    if m == 0 or margin[0] < -tol:
+        return 0.0
+    k = -1
+    for i in range(m):
+        if margin[i] < -tol:
+            k = i
+            break
+    if k < 0:
+        if m < 2 or margin[m - 1] <= tol or margin[m - 2] <= margin[m - 1]:
             return a
-        k = m.size - 1
-    else:
-        k = neg[0]
-    x0, x1, m0, m1 = x[k - 1], x[k], m[k - 1], m[k]
-    return float(min(x0 + (x1 - x0) * m0 / (m0 - m1), a))
+        k = m - 1
+    x0, x1, m0, m1 = x[k - 1], x[k], margin[k - 1], margin[k]
+    return min(x0 + (x1 - x0) * m0 / (m0 - m1), a)
+
+
+@njit(cache=True)
+def march(x, d, drive, scale, u):
+    """March the springs at positions ``x`` (increasing) over the approach ``d`` (w =
+    d - x^2) and the tangential ``drive`` (both per time step, in the units above).
+
+    u: spring displacements before the first step (updated in place; zero for a fresh
+    contact). scale: factor from sum over springs to force (both halves of the row).
+    Returns (T, P, b): sum of u and of w_+ times scale, and the stick radius b / a*.
+    Every reversal of the drive should be a grid point (springs are then exact there).
+    """
+    nt = d.size
+    n = x.size
+    T = np.zeros(nt)
+    P = np.zeros(nt)
+    b = np.zeros(nt)
+    margin = np.empty(n)
+    m_prev = 0
+    while m_prev < n and u[m_prev] != 0.0:
+        m_prev += 1
+    d_prev = d[0]
+    drive_prev = drive[0]
+    for k in range(nt):
+        dk = d[k]
+        du = drive[k] - drive_prev
+        m = m_prev  # springs in contact: the prefix with d - x^2 > 0
+        while m < n and dk - x[m] * x[m] > 0.0:
+            m += 1
+        while m > 0 and dk - x[m - 1] * x[m - 1] <= 0.0:
+            m -= 1
+        for i in range(m, m_prev):  # leaving springs drop their displacement
+            u[i] = 0.0
+        t_sum = 0.0
+        p_sum = 0.0
+        for i in range(m):
+            w = dk - x[i] * x[i]
+            if i < m_prev:
+                trial = u[i] + du
+            else:  # entering: the drive since it touched (d = x^2 inside this step)
+                frac = (x[i] * x[i] - d_prev) / (dk - d_prev) if dk != d_prev else 0.0
+                frac = min(max(frac, 0.0), 1.0)
+                trial = drive[k] - (drive_prev + frac * du)
+            margin[i] = w - abs(trial)
+            if trial > w:
+                trial = w
+            elif trial < -w:
+                trial = -w
+            u[i] = trial
+            t_sum += trial
+            p_sum += w
+        T[k] = scale * t_sum
+        P[k] = scale * p_sum
+        b[k] = _stick_radius(x, margin, m, dk)
+        m_prev = m
+        d_prev = dk
+        drive_prev = drive[k]
+    return T, P, b
+
+
+@njit(cache=True)
+def contact(psi, tau0, n, steps):
+    """One contact of eq 3 from (psi, tau0): N = n springs, about ``steps`` time steps on
+    ``loading.time_grid``. Returns (tau, T / T0, b / a*, impulse ratio, final u)."""
+    s0 = math.sin(tau0)
+    tau = time_grid(psi, tau0, steps)
+    nt = tau.size
+    d = np.empty(nt)
+    drive = np.empty(nt)
+    end = np.pi - tau0
+    for k in range(nt):
+        s = math.sin(tau[k])
+        inside = tau[k] >= tau0 and tau[k] <= end
+        d[k] = max(s - s0, 0.0) / (1.0 - s0) if inside else 0.0
+        drive[k] = psi * s / (1.0 - s0)
+    x = (np.arange(n) + 0.5) / n
+    scale = 0.75 * (1.0 - s0) ** 1.5 * 2.0 / n
+    u = np.zeros(n)
+    T, P, b = march(x, d, drive, scale, u)
+    return tau, T, b, trapezoid(T, tau) / trapezoid(P, tau), u
 
 
 def run(psi: float, tau0: float, tau: NDArray[np.float64], n: int
         ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64],
                    NDArray[np.float64]]:
-    """March the springs over the times ``tau``; returns (T/T0, P/P0, b/a*, final u).
-
-    ``tau`` must start at or before contact and hold pi / 2 if it passes it.
-    """
+    """March N = n springs over the given times ``tau`` (any start, before or inside the
+    contact; pi / 2 on the grid if it is passed). Returns (T/T0, P/P0, b/a*, final u)."""
     s0 = np.sin(tau0)
-    x = spring_positions(n)
-    h = 1.0 / n
-    scale = 0.75 * (1.0 - s0) ** 1.5 * 2.0 * h  # both halves of the symmetric row
+    tau = np.asarray(tau, dtype=float)
     d = approach(tau, tau0) / (1.0 - s0)
     drive = psi * np.sin(tau) / (1.0 - s0)
     u = np.zeros(n)
-    w_prev = np.full(n, -1.0)
-    T = np.zeros(tau.size)
-    P = np.zeros(tau.size)
-    b = np.zeros(tau.size)
-    for k in range(tau.size):
-        w = d[k] - x * x
-        du = drive[k] - drive[k - 1] if k else 0.0
-        u, margin = step_springs(u, w, w_prev, du, psi)
-        T[k] = scale * u.sum()
-        P[k] = scale * np.maximum(w, 0.0).sum()
-        b[k] = stick_radius(x, margin, np.sqrt(d[k])) if d[k] > 0.0 else 0.0
-        w_prev = w
+    T, P, b = march(spring_positions(n), d, drive, 0.75 * (1.0 - s0) ** 1.5 * 2.0 / n, u)
     return T, P, b, u
 
 
-def solve(contact: ContactLike, resolution: int) -> tuple[NDArray[np.float64], ...]:
-    """MDR with ``resolution`` springs on each half of the row and as many time steps
-    (at least 60), on the grid of ``loading.time_grid``. Returns (tau, T, b, ratio)."""
+def solve(contact_: ContactLike, resolution: int, steps: int | None = None
+          ) -> tuple[NDArray[np.float64], ...]:
+    """MDR with ``resolution`` springs on each half of the row and ``steps`` time steps
+    (``default_steps(resolution)`` when None). Returns (tau, T, b, ratio)."""
     n = check_resolution(resolution, maximum=10**6)
-    psi, tau0 = contact_parameters(contact)
-    tau = time_grid(psi, tau0, max(n, 60))
-    check_resolution(n * tau.size, maximum=10**9, name="springs * time steps")
-    T, P, b, _ = run(psi, tau0, tau, n)
-    return tau, T, b, impulse_ratio_trapezoid(tau, T, P)
+    m = default_steps(n) if steps is None else check_resolution(steps, maximum=10**7,
+                                                                 name="steps")
+    psi, tau0 = contact_parameters(contact_)
+    check_resolution(n * m, maximum=10**9, name="springs * time steps")
+    tau, T, b, ratio, _ = contact(psi, tau0, n, m)
+    return tau, T, b, ratio
 
 
-def traction(contact: ContactLike, tau: float, r: ArrayLike, n: int = 2000
+def traction(contact_: ContactLike, tau: float, r: ArrayLike, n: int = 2000
              ) -> NDArray[np.float64]:
     """Traction on the upper sphere tau_u(r, tau) / (mu p*) by the MDR inverse transform.
 
@@ -136,7 +213,7 @@ def traction(contact: ContactLike, tau: float, r: ArrayLike, n: int = 2000
     int dx / sqrt(x^2 - r^2) = log(x + sqrt(x^2 - r^2)).
     """
     n = check_resolution(n, maximum=10**6, name="n")
-    psi, tau0 = contact_parameters(contact)
+    psi, tau0 = contact_parameters(contact_)
     if not (tau0 < tau < np.pi - tau0):
         return np.zeros_like(np.asarray(r, dtype=float))
     grid = time_grid(psi, tau0, max(n, 60))

@@ -6,7 +6,7 @@ import itertools
 
 import numpy as np
 import pytest
-from numerics_helpers import max_error
+from numerics_helpers import max_error, slope
 
 from core import Contact
 from core.numerics import annulus, solve
@@ -39,6 +39,18 @@ def test_converges_as_rings_and_steps_grow(psi, tau0):
     assert all(e2 < e1 for e1, e2 in itertools.pairwise(errors)), errors
     assert errors[-1] < errors[0] / 5
     assert errors[-1] < 3e-3
+
+
+@pytest.mark.parametrize(("psi", "tau0", "lo", "hi"), [
+    (0.4, np.pi / 6, 0.8, 1.1), (0.4, -0.9, 0.8, 1.1),  # entering rings stick a whole step
+    (1.0, np.pi / 6, 1.15, 1.4), (1.0, -0.9, 1.15, 1.4),
+    (2.414, np.pi / 6, 1.75, 2.0), (28.35, -0.9, 1.75, 2.0),  # full-slip loading exact
+])
+def test_convergence_order(psi, tau0, lo, hi):
+    c = Contact(psi, tau0)
+    ns = [8, 16, 32, 64]
+    errors = [max_error(c, solve("annulus", c, n)) for n in ns]
+    assert lo < -slope(ns, errors) < hi, errors
 
 
 def test_full_slip_loading_is_exact():

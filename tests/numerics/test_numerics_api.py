@@ -11,7 +11,8 @@ from core import Contact
 from core.numerics import INTERACTIVE_RESOLUTION, METHODS, MethodResult, solve
 
 NAMES = ["mdr", "annulus", "lammps_mindlin", "lammps_mindlin_force", "lammps_mindlin_rescale",
-         "lammps_mindlin_rescale_force", "liggghts_history", "direnzo", "quad",
+         "lammps_mindlin_rescale_force", "lammps_linear_history", "liggghts_history", "direnzo",
+         "quad",
          "gauss_legendre"]
 
 
@@ -54,3 +55,20 @@ def test_huge_work_is_refused_with_the_limit_named():
 def test_unknown_method():
     with pytest.raises(KeyError, match="unknown method"):
         solve("euler", Contact(1.0, 0.3), 10)
+
+
+@pytest.mark.parametrize("name", ["mdr", "annulus"])
+@pytest.mark.parametrize("bad", [0, 1, 2.0, True, "10"])
+def test_bad_steps_raise(name, bad):
+    with pytest.raises(ValueError, match="steps"):
+        solve(name, Contact(2.0, 0.3), 10, steps=bad)
+
+
+def test_steps_only_for_stepped_methods():
+    with pytest.raises(ValueError, match="steps"):
+        solve("lammps_mindlin", Contact(2.0, 0.3), 100, steps=100)
+
+
+def test_steps_set_the_time_grid():
+    c = Contact(2.0, 0.3)
+    assert solve("mdr", c, 40, steps=300).tau.size > solve("mdr", c, 40, steps=30).tau.size

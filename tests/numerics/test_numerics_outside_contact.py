@@ -7,7 +7,6 @@ import pytest
 
 from core import Contact
 from core.numerics import annulus, dem, mdr, solve
-from core.numerics.dem import _RULES
 
 # a grid that starts before contact and ends after it
 TAU0 = 0.4
@@ -32,12 +31,10 @@ def test_annulus_zero_outside(psi):
     assert np.abs(T[~OUTSIDE]).max() > 0.05
 
 
-@pytest.mark.parametrize("name", sorted(_RULES))
+@pytest.mark.parametrize("name", sorted(dem.MODELS))
 @pytest.mark.parametrize("psi", [0.5, 3.0])
 def test_dem_zero_outside(name, psi):
-    force_history, rescale, factor = _RULES[name]
-    T = dem.integrate(psi, TAU0, GRID, force_history=force_history, rescale=rescale,
-                      factor=factor)
+    T = dem.forces(dem.MODELS[name], psi, TAU0, GRID)
     assert np.all(T[OUTSIDE] == 0.0)
     assert np.abs(T[~OUTSIDE]).max() > 0.05
 
