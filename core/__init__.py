@@ -11,14 +11,16 @@ from core.contact import Contact, impulse_ratio
 from core.coulomb import CoulombReport, coulomb_certificate
 from core.physical import MATERIALS, PhysicalInputs, Scales
 from core.tangential import PHASE_NAMES, Phase
-from core.validation import PSI_MAX
+from core.validation import DOMAIN, PSI_MAX, Interval
 
 __all__ = [
+    "DOMAIN",
     "MATERIALS",
     "PHASE_NAMES",
     "PSI_MAX",
     "Contact",
     "CoulombReport",
+    "Interval",
     "Phase",
     "PhysicalInputs",
     "Scales",

@@ -15,7 +15,7 @@ from core.clock import clock, half_width, one_minus_square
 from core.elliptic import impulse_factor
 from core.physical import PhysicalInputs, Scales
 from core.timeline import Timeline
-from core.validation import PSI_MAX, check_param
+from core.validation import as_reals, check_param, shown
 
 MAX_GRID = 10**8
 CHUNK = 1 << 16
@@ -28,16 +28,21 @@ cost page faults and memory traffic that dwarf the arithmetic)."""
 class Contact:
     """Two identical elastic spheres in one intermittent oblique contact (Zharii 1996).
 
-    Parameters (validated; ValueError names the parameter, value and allowed range):
+    Parameters (validated against ``core.DOMAIN``; ValueError names the parameter, value
+    and allowed range):
 
     - psi in [0, 1e12]: drive ratio 2 (1 - nu) u0 / (mu (2 - nu) H) = tan theta / tan theta0
       (eq 23); psi <= 1 is full stick, psi > 1 slip, partial stick and counter-slip.
     - tau0 in (-pi/2, pi/2): start of contact, sin tau0 = h / H (eq 4); tau0 < 0 is a preload.
-    - mu > 0: friction coefficient; nu in (-1, 0.5]: Poisson ratio.
+    - mu in (0, 1e3]: friction coefficient; nu in (-1, 0.5]: Poisson ratio.
 
     Times tau = omega t are in radians and taken modulo 2 pi; every method accepts scalars
     or arrays and returns arrays of the broadcast shape, zero (never nan) outside contact
     (the functions of time return read-only arrays, as ``at`` does: copy one to modify it).
+    Times and radii r may be Python or numpy ints and floats of any precision, alone, in
+    lists or in arrays; any other dtype (bool, complex, str, bytes, object, datetime) raises
+    TypeError, and nan or inf raises ValueError naming the first such element: no result
+    is ever nan.
     Results are dimensionless: forces in T0 (eq 37) or P0 = T0 / mu, radii in
     a* = sqrt(R (H - h) / 2), pressure in p* = 4 G a* / ((1 - nu) pi R), tractions in mu p*.
     ``scales`` carries the SI values of those scales when built with ``from_physical``.
@@ -67,13 +72,10 @@ class Contact:
         omega: float,
     ) -> Contact:
         """The contact of SI inputs (R, H, u0, h in m; G in Pa; omega in rad/s), with
-        ``scales`` set. h must lie in (-H, H)."""
+        ``scales`` set. Each input must lie in its range of ``core.DOMAIN``, h in (-H, H),
+        and psi of u0 / H in [0, 1e12] (ValueError naming the inputs otherwise); every
+        scale is then finite."""
         inputs = PhysicalInputs(R=R, G=G, nu=nu, mu=mu, H=H, u0=u0, h=h, omega=omega)
-        if inputs.psi > PSI_MAX:
-            raise ValueError(
-                f"psi = {inputs.psi!r} (from u0 / H = {u0 / H:g}) is outside the allowed range"
-                f" [0, {PSI_MAX:g}]"
-            )
         c = cls(psi=inputs.psi, tau0=inputs.tau0, mu=inputs.mu, nu=inputs.nu)
         return replace(c, scales=Scales.of(inputs, c.F0, c.impulse_ratio))
 
@@ -122,8 +124,9 @@ class Contact:
     def tau_grid(self, n: int = 400) -> NDArray[np.float64]:
         """About n sorted times over [tau0, pi - tau0] that hold tau0, pi/2, tau1 and
         pi - tau0 exactly, with n/8 extra points in partial stick (short for large psi)."""
-        if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 2 <= n <= MAX_GRID:
-            raise ValueError(f"n must be an integer in [2, {MAX_GRID}], got {n!r}")
+        if (isinstance(n, bool | np.timedelta64) or not isinstance(n, int | np.integer)
+                or not 2 <= n <= MAX_GRID):
+            raise ValueError(f"n must be an integer in [2, {MAX_GRID}], got {shown(n)}")
         n = operator.index(n)
         half = n // 2  # pi/2 is the midpoint: uniform spacing over the whole contact
         if self.psi <= 1.0:
@@ -151,16 +154,20 @@ class Contact:
         """Every quantity below at the times tau, computed on first use from one
         evaluation of the contact clock (``core.timeline``): ask it for several
         quantities on the same times rather than calling the methods one by one."""
-        return Timeline(np.asarray(tau, dtype=float), self.psi, self._half_e[0])
+        return self._timeline(as_reals(tau, "tau"))
+
+    def _timeline(self, tau: NDArray[np.float64]) -> Timeline:
+        """``at`` of times already validated."""
+        return Timeline(tau, self.psi, self._half_e[0])
 
     def _along(self, tau: ArrayLike, name: str) -> NDArray:
         """Quantity ``name`` of ``at(tau)``; long arrays in chunks of CHUNK times, so that
         the dozen temporaries of each chunk stay in the cache (same values, bit for bit)."""
-        tau = np.asarray(tau, dtype=float)
+        tau = as_reals(tau, "tau")
         if tau.size <= CHUNK:
-            return getattr(self.at(tau), name)
+            return getattr(self._timeline(tau), name)
         flat = tau.reshape(-1)
-        out = np.concatenate([getattr(self.at(flat[i:i + CHUNK]), name)
+        out = np.concatenate([getattr(self._timeline(flat[i:i + CHUNK]), name)
                               for i in range(0, flat.size, CHUNK)]).reshape(tau.shape)
         out.setflags(write=False)
         return out
@@ -191,16 +198,24 @@ class Contact:
         0 in the slip phases and outside contact."""
         return self._along(tau, "stick_radius")
 
+    @staticmethod
+    def _radii(r: ArrayLike) -> NDArray[np.float64]:
+        """|r| validated, capped at 2: every contact lies within r = 1 (a <= a*), so the
+        cap changes no result and r^2 cannot overflow."""
+        return np.minimum(np.abs(as_reals(r, "r")), 2.0)
+
     def pressure(self, r: ArrayLike, tau: ArrayLike) -> NDArray[np.float64]:
         """p / p* at radius r (units of a*) and time tau (eq 6); r broadcasts against tau."""
-        w = clock(tau, self._half_e[0])
-        r, w = np.broadcast_arrays(np.asarray(r, dtype=float), w)
+        r = self._radii(r)
+        w = clock(as_reals(tau, "tau"), self._half_e[0])
+        r, w = np.broadcast_arrays(r, w)
         return hertz.pressure(r, one_minus_square(w))
 
     def traction(self, r: ArrayLike, tau: ArrayLike) -> NDArray[np.float64]:
         """tau_u / (mu p*) on the upper sphere at radius r (units of a*) and time tau
         (eqs 18, 24, 33, 36); r broadcasts against tau."""
-        return tangential.traction(r, clock(tau, self._half_e[0]), self.psi)
+        r = self._radii(r)
+        return tangential.traction(r, clock(as_reals(tau, "tau"), self._half_e[0]), self.psi)
 
     def centre_displacement(self, tau: ArrayLike) -> NDArray[np.float64]:
         """u2 / u0, displacement of the contact centre of the upper sphere (eq 43)."""
@@ -213,12 +228,12 @@ class Contact:
     @staticmethod
     def drive_displacement(tau: ArrayLike) -> NDArray[np.float64]:
         """u_x0 / u0 = sin tau (eq 3)."""
-        return np.sin(np.asarray(tau, dtype=float))
+        return np.sin(as_reals(tau, "tau"))
 
     @staticmethod
     def drive_velocity(tau: ArrayLike) -> NDArray[np.float64]:
         """(du_x0/dt) / (omega u0) = cos tau (eq 3)."""
-        return np.cos(np.asarray(tau, dtype=float))
+        return np.cos(as_reals(tau, "tau"))
 
 
 def impulse_ratio(
@@ -227,16 +242,12 @@ def impulse_ratio(
     """T_imp / (mu P_imp) (eq 41) for an array of psi at one tau0; the curve of Fig. 8.
 
     Independent of mu and nu (accepted for symmetry with ``Contact``). psi is validated
-    element-wise (finite, in [0, 1e12]).
+    element-wise: ints or floats in [0, 1e12] (TypeError for any other dtype, ValueError
+    naming the first element out of range, nan or inf).
     """
     tau0 = check_param("tau0", tau0)
     check_param("mu", mu)
     check_param("nu", nu)
-    psi = np.asarray(psi, dtype=float)
-    bad = ~np.isfinite(psi) | (psi < 0.0) | (psi > PSI_MAX)
-    if bad.any():
-        raise ValueError(
-            f"psi = {float(psi[bad].flat[0])!r} is outside the allowed range [0, {PSI_MAX:g}]"
-        )
+    psi = as_reals(psi, "psi")
     e = half_width(tau0)
     return tangential.impulse_ratio(psi, math.sin(e / 2), math.cos(e / 2))

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from core.validation import check_param, check_real
+from core.validation import DOMAIN, check_param, shown
 
 SQRT8 = 2.0 * math.sqrt(2.0)
 
@@ -24,7 +24,11 @@ MATERIALS: dict[str, dict[str, float]] = {
 class PhysicalInputs:
     """SI inputs of eq 3: radius R (m), shear modulus G (Pa), Poisson ratio nu, friction
     coefficient mu, vertical and horizontal drive amplitudes H and u0 (m), gap h at t = 0
-    (m; h < 0 is a preload) and angular frequency omega (rad/s)."""
+    (m; h < 0 is a preload) and angular frequency omega (rad/s).
+
+    Validated (ValueError naming the input): each against ``core.DOMAIN``, whose ranges
+    keep every ``Scales`` value finite; then h in (-H, H), and psi of u0 / H, mu and nu in
+    [0, 1e12]."""
 
     R: float
     G: float
@@ -36,25 +40,25 @@ class PhysicalInputs:
     omega: float
 
     def __post_init__(self) -> None:
-        for name, lo, lo_open in (
-            ("R", 0.0, True),
-            ("G", 0.0, True),
-            ("H", 0.0, True),
-            ("omega", 0.0, True),
-            ("u0", 0.0, False),
-        ):
-            object.__setattr__(
-                self, name, check_real(name, getattr(self, name), lo, lo_open=lo_open)
-            )
-        for name in ("nu", "mu"):
+        for name in ("R", "G", "nu", "mu", "H", "u0", "h", "omega"):
             object.__setattr__(self, name, check_param(name, getattr(self, name)))
-        h = check_real("h", self.h)
-        if not -self.H < h < self.H:
+        h, H = self.h, self.H
+        if not -H < h < H:
             raise ValueError(
-                f"h = {h!r} is outside the allowed range (-H, H) = ({-self.H:g}, {self.H:g}):"
-                " the spheres must touch (h < H) and separate again (h > -H)"
+                f"h = {shown(h)} is outside the allowed range (-H, H) = ({shown(-H)},"
+                f" {shown(H)}): the spheres must touch (h < H) and separate again (h > -H)"
             )
-        object.__setattr__(self, "h", h)
+        if not DOMAIN["tau0"].contains(self.tau0):  # h / H rounds to -1
+            raise ValueError(
+                f"h = {shown(h)} is too close to -H = {shown(-H)}: the spheres would never"
+                " separate (tau0 = -pi/2)"
+            )
+        if not DOMAIN["psi"].contains(self.psi):
+            raise ValueError(
+                f"psi = {shown(self.psi)} (from u0 / H = {shown(self.u0 / H)}, mu ="
+                f" {shown(self.mu)}) is outside the allowed range {DOMAIN['psi'].describe()}:"
+                " lower u0, or raise H or mu"
+            )
 
     @property
     def tau0(self) -> float:
@@ -66,7 +70,8 @@ class PhysicalInputs:
     @property
     def psi(self) -> float:
         """psi = 2 (1 - nu) u0 / (mu (2 - nu) H) (eq 23)."""
-        return 2.0 * (1.0 - self.nu) * self.u0 / (self.mu * (2.0 - self.nu) * self.H)
+        # in this order no product can underflow to a zero divisor (H >= 1e-15, mu > 0)
+        return 2.0 * (1.0 - self.nu) / (2.0 - self.nu) * (self.u0 / self.H) / self.mu
 
 
 @dataclass(frozen=True)

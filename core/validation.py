@@ -1,57 +1,160 @@
-"""Validation of scalar parameters at the boundary (constructors), with messages that
-name the parameter, its value and the allowed range."""
+"""Validation at the boundary of the core API: one table, ``DOMAIN``, of the allowed range of
+every parameter and input, and the two checks that use it (``check_param`` for one number,
+``as_reals`` for arrays). The app derives its limits from the same table.
+
+Messages are written to be shown to users as they are: they name the parameter, its value
+and the allowed range, e.g. ``psi = -1 is outside the allowed range [0, 1e+12]`` or
+``psi must be a real number in [0, 1e+12], got 'abc'``.
+"""
 
 from __future__ import annotations
 
 import math
 import numbers
+from dataclasses import dataclass
 
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
-def _interval(lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> str:
-    left = "(-inf" if lo is None else ("(" if lo_open else "[") + f"{lo:g}"
-    right = "inf)" if hi is None else f"{hi:g}" + (")" if hi_open else "]")
-    return f"{left}, {right}"
-
-
-def check_real(
-    name: str,
-    value: object,
-    lo: float | None = None,
-    hi: float | None = None,
-    *,
-    lo_open: bool = False,
-    hi_open: bool = False,
-) -> float:
-    """Return ``value`` as a float if it is a finite real number in the given interval.
-
-    Raises ValueError naming the parameter, its value and the allowed range otherwise
-    (nan, inf, booleans, strings and out-of-range numbers alike).
-    """
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        allowed = _interval(lo, hi, lo_open, hi_open)
-        raise ValueError(f"{name} must be a real number in {allowed}, got {value!r}")
-    v = float(value)
-    below = lo is not None and (v <= lo if lo_open else v < lo)
-    above = hi is not None and (v >= hi if hi_open else v > hi)
-    if below or above or not math.isfinite(v):
-        allowed = _interval(lo, hi, lo_open, hi_open)
-        if not math.isfinite(v):
-            raise ValueError(f"{name} must be a finite number in {allowed}, got {v!r}")
-        raise ValueError(f"{name} = {v!r} is outside the allowed range {allowed}")
-    return v
-
-
-#: The domain of the dimensionless parameters: (lo, hi, lo_open, hi_open).
 PSI_MAX = 1e12
-DOMAIN: dict[str, tuple[float | None, float | None, bool, bool]] = {
-    "psi": (0.0, PSI_MAX, False, False),
-    "tau0": (-math.pi / 2, math.pi / 2, True, True),
-    "mu": (0.0, None, True, False),
-    "nu": (-1.0, 0.5, True, False),
+MU_MAX = 1e3
+H_MAX = 1e3
+
+
+def _as_float(value: object) -> float | None:
+    """value as a float if it is a real number, else None. Booleans and numpy timedeltas
+    (which numpy registers as integers) are not real numbers here; ints and fractions
+    beyond the float range become +-inf."""
+    if isinstance(value, bool | np.bool_ | np.timedelta64) or not isinstance(
+        value, numbers.Real
+    ):
+        return None
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf if value > 0 else -math.inf
+
+
+def shown(value: object) -> str:
+    """A short text for value in a message: numbers with as few digits as identify them
+    ("-1", "2e+12", "0.1", "-1.5707963267948966"), anything else by its repr, cut short."""
+    v = _as_float(value)
+    if v is not None and math.isfinite(v):
+        short = f"{v:g}"
+        return short if float(short) == v else repr(v)
+    if isinstance(value, numbers.Integral) and v is not None:  # an int beyond the floats
+        return f"{'-' if value < 0 else ''}~1e+{round(abs(value).bit_length() * 0.30103)}"
+    text = str(value) if v is not None else repr(value)
+    return text if len(text) <= 24 else text[:21] + "..."
+
+
+@dataclass(frozen=True)
+class Interval:
+    """An interval of the real line. ``lo`` or ``hi`` None is an infinite end; infinities
+    and nan are never inside (every allowed value is finite)."""
+
+    lo: float | None
+    hi: float | None
+    lo_open: bool = False
+    hi_open: bool = False
+
+    def _holds(self, x: ArrayLike) -> np.bool_ | NDArray[np.bool_]:
+        """Element-wise: x (floats) is finite and inside."""
+        ok = np.isfinite(x)
+        if self.lo is not None:
+            ok &= np.greater(x, self.lo) if self.lo_open else np.greater_equal(x, self.lo)
+        if self.hi is not None:
+            ok &= np.less(x, self.hi) if self.hi_open else np.less_equal(x, self.hi)
+        return ok
+
+    def contains(self, x: float) -> bool:
+        """True when x is a real number (not a bool) inside the interval."""
+        v = _as_float(x)
+        return v is not None and bool(self._holds(v))
+
+    def describe(self) -> str:
+        """Interval notation, e.g. '(-1, 0.5]', '(0, inf)', '(-inf, inf)'."""
+        left = "(-inf" if self.lo is None else ("(" if self.lo_open else "[") + f"{self.lo:g}"
+        right = "inf)" if self.hi is None else f"{self.hi:g}" + (")" if self.hi_open else "]")
+        return f"{left}, {right}"
+
+    def check(self, name: str, value: object) -> float:
+        """value as a float if it is a real number inside the interval; ValueError naming
+        the parameter, its value and the allowed range otherwise (strings, booleans, nan,
+        inf and out-of-range numbers alike)."""
+        v = _as_float(value)
+        if v is not None and self._holds(v):
+            return v
+        where = "" if self.lo is None and self.hi is None else f" in {self.describe()}"
+        if v is None:
+            raise ValueError(f"{name} must be a real number{where}, got {shown(value)}")
+        if math.isnan(v) or (math.isinf(v) and isinstance(value, float | np.floating)):
+            raise ValueError(f"{name} must be a finite number{where}, got {shown(value)}")
+        raise ValueError(f"{name} = {shown(value)} is outside the allowed range"
+                         f" {self.describe()}")
+
+
+#: The allowed range of every parameter and input of the core API, the one table the
+#: checks below and the app's limits are derived from.
+#:
+#: Dimensionless (``Contact``): psi, tau0 (rad), mu, nu. mu <= 1e3 is far above any real
+#: friction coefficient (dry pairs are below ~10); the bound keeps T0 = mu P0 and the
+#: traction scale mu p* finite for every SI input below. tau (rad) and r (units of a*):
+#: any finite number.
+#:
+#: SI (``Contact.from_physical``): R (m), G (Pa), H, u0, h (m), omega (rad/s). The ranges
+#: span every realistic contact (nanometre to kilometre spheres, 1 Pa gels to beyond
+#: diamond, 1e-9 to 1e12 rad/s) and are what keeps every derived scale finite: over the
+#: whole box P0 < 2e19 N, T0 < 2e22 N, p* < 3e19 Pa, mu p* < 3e22 Pa, impulses < 2e29 N s,
+#: period < 7e9 s (tests/core/test_physical.py checks every corner). Inputs also checked
+#: together (``PhysicalInputs``): h must lie in (-H, H) (the "h" row is its widest
+#: extent, H <= 1e3), and psi of u0 / H, mu and nu in [0, 1e12].
+DOMAIN: dict[str, Interval] = {
+    "psi": Interval(0.0, PSI_MAX),
+    "tau0": Interval(-math.pi / 2, math.pi / 2, lo_open=True, hi_open=True),
+    "mu": Interval(0.0, MU_MAX, lo_open=True),
+    "nu": Interval(-1.0, 0.5, lo_open=True),
+    "tau": Interval(None, None),
+    "r": Interval(None, None),
+    "R": Interval(1e-9, 1e3),
+    "G": Interval(1.0, 1e13),
+    "H": Interval(1e-15, H_MAX),
+    "u0": Interval(0.0, H_MAX),
+    "h": Interval(-H_MAX, H_MAX, lo_open=True, hi_open=True),
+    "omega": Interval(1e-9, 1e12),
 }
 
 
 def check_param(name: str, value: object) -> float:
-    """``check_real`` against the domain of the parameter ``name`` (see ``DOMAIN``)."""
-    lo, hi, lo_open, hi_open = DOMAIN[name]
-    return check_real(name, value, lo, hi, lo_open=lo_open, hi_open=hi_open)
+    """value as a float if it is inside ``DOMAIN[name]``; ValueError (see
+    ``Interval.check``) otherwise."""
+    return DOMAIN[name].check(name, value)
+
+
+def as_reals(x: ArrayLike, name: str) -> NDArray[np.float64]:
+    """x as a float64 array (the same array if it is one) with every element inside
+    ``DOMAIN[name]``: the boundary check of every function of time, radius or psi array.
+
+    Accepts Python and numpy ints and floats, alone, in lists or in arrays of any integer
+    or float dtype. TypeError naming the argument and its dtype for any other (bool,
+    complex, str, bytes, object, datetime, ...); ValueError naming the first offending
+    element for nan, inf or a value outside the domain. Cost on a valid float64 array:
+    one min and one max (an interval holds every element when it holds the least and the
+    greatest; nan propagates into both).
+    """
+    try:
+        a = np.asarray(x)
+    except (ValueError, TypeError) as err:  # e.g. ragged nested lists
+        raise type(err)(f"{name} must be an array of real numbers: {err}") from err
+    if a.dtype.kind not in "iuf":
+        raise TypeError(f"{name} must be real numbers (int or float), got dtype {a.dtype}")
+    if a.dtype != np.float64:
+        with np.errstate(over="ignore"):  # long double beyond float64: inf, refused below
+            a = a.astype(np.float64)
+    domain = DOMAIN[name]
+    if a.size and not (domain.contains(a.min()) and domain.contains(a.max())):
+        if a.ndim == 0:
+            domain.check(name, a[()])
+        first = np.unravel_index(np.flatnonzero(~domain._holds(a))[0], a.shape)
+        domain.check(f"{name}[{', '.join(str(int(i)) for i in first)}]", a[first])
+    return a

@@ -1,5 +1,7 @@
 """SI inputs to the dimensionless problem and back (eqs 4, 9, 10, 23, 37, 41)."""
 
+import dataclasses
+import itertools
 import math
 
 import mpmath as mp
@@ -7,7 +9,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from core import MATERIALS, Contact
+from core import DOMAIN, MATERIALS, Contact
 
 # A steel pair in a 40 kHz motor: R = 5 mm, H = 1 um, u0 = 0.8 um, h = 0.5 um.
 SI = {
@@ -101,3 +103,21 @@ def test_dimensionless_contact_has_no_scales() -> None:
     assert Contact.from_physical(**SI) == Contact(
         Contact.from_physical(**SI).psi, Contact.from_physical(**SI).tau0, 0.2, 0.29
     )
+
+
+def test_every_scale_is_finite_over_the_whole_domain() -> None:
+    """Every corner of the SI box of core.DOMAIN (u0 from 0 to the largest psi allows, h
+    from near -H to near H): every scale finite, the elastic ones positive."""
+    edges = {name: (DOMAIN[name].lo, DOMAIN[name].hi) for name in ("R", "G", "H", "omega")}
+    edges["nu"] = (math.nextafter(-1.0, 0.0), 0.5)
+    edges["mu"] = (5e-324, DOMAIN["mu"].hi)
+    for corner in itertools.product(*edges.values()):
+        si = dict(zip(edges, corner, strict=True))
+        H, mu, nu = si["H"], si["mu"], si["nu"]
+        u0_max = min(DOMAIN["u0"].hi, 0.999 * 1e12 * mu * (2 - nu) * H / (2 * (1 - nu)))
+        for u0, h in itertools.product((0.0, u0_max), (-H * (1 - 1e-15), 0.0, H * (1 - 1e-16))):
+            with np.errstate(all="raise", under="ignore"):
+                s = Contact.from_physical(**si, u0=u0, h=h).scales
+            values = [getattr(s, f.name) for f in dataclasses.fields(s) if f.name != "inputs"]
+            assert all(math.isfinite(v) and v >= 0 for v in values), (si, u0, h, s)
+            assert min(s.P0, s.a_star, s.p_star, s.alpha_star, s.normal_impulse, s.period) > 0
