@@ -1,0 +1,179 @@
+"""The preload fixes the start of contact: tau0 from the mean-force balance (eq 10).
+
+The rotor rests on the rod with a steady force N (its weight, or a spring). Between
+contacts nothing holds it up, so over one period 2 pi / omega the impulse of the contact
+force balances that of N: P_imp = 2 pi N / omega, and with eq 10
+
+    F(tau0) = Phi,   Phi = 9 pi (1 - nu) N / (4 G R^(1/2) H^(3/2))      (dimensionless)
+
+(R in m, G in Pa, N in newtons, H in m: the normal drive amplitude of eq 3.) F decreases
+monotonically from 8 at tau0 = -pi/2 (contact all period long) to 0 at tau0 = pi/2
+(grazing contact), so the balance has exactly one root for 0 < Phi < 8. For Phi >= 8 the
+contact never opens: the rotor is pressed on the rod throughout, and the intermittent
+model of the paper does not apply; the solver returns nan there, never a number.
+
+We solve in m = (1 - sin tau0) / 2 = sin^2(e / 2), e = pi/2 - tau0, the variable of
+``core.elliptic``, where F = 12 m^2 J(m) rises from 0 (m = 0) to 8 (m = 1), and carry
+mc = 1 - m alongside, so that deep preload (m near 1) keeps its digits. F itself is
+always ``core.elliptic.impulse_factor`` (one source of truth for eq 11); this module adds
+only what the root solve needs:
+
+- a starting point: m = s (g0 + (1 - g0) s + s (1 - s) q(s)), s = sqrt(Phi / 8),
+  g0 = sqrt(32 / (9 pi)) (from F ~ (9 pi / 4) m^2 at small m), q a quartic fitted once to
+  the exact inverse (relative error < 5e-5 for every Phi in (0, 8)); for mc < 0.01,
+  mc from F = 8 - 18 mc + mc^2 (9.613 - (9/4) log mc) + ... (relative error < 3e-4);
+- the slope dF/dm = 2 F / m + 12 m^2 J'(m), with
+  J'(m) = ((8 - 7m) E(m) - mc (8 - 3m) K(m)) / (6 m^3) for m >= 0.05 (K, E with
+  parameter m) and its hypergeometric series below (the closed form cancels there);
+- Newton steps on all points at once, safeguarded by a bracket [lo, hi] that every
+  evaluation of F narrows (F is monotone): a step that leaves the bracket is replaced by
+  its midpoint. A point is done when its step is below 1e-7 of min(m, mc) (Newton
+  converges quadratically: dF/dm > 0, d2F/dm2 bounded up to a mild log at m = 1, so the
+  remaining error is ~1e-14 of min(m, mc)), or when |F - Phi| is at the rounding level
+  of F itself (4e-15 Phi: near Phi = 8 no step can do better). Two evaluations of F
+  suffice for most points.
+
+tau0 = pi/2 - 2 arcsin(sqrt m) for m <= 1/2, and 2 arcsin(sqrt mc) - pi/2 above, each
+exact to rounding. Near Phi = 8 the problem itself is ill-conditioned: F(m) has absolute
+error ~1e-15, so mc, and tau0 + pi/2 ~ 2 sqrt(mc), are good to ~1e-16 / mc relative.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.special import ellipe, ellipkm1
+
+from core.elliptic import impulse_factor
+
+#: F(tau0) at tau0 = -pi/2: the largest mean contact force an intermittent contact can carry,
+#: in units of 4 G R^(1/2) H^(3/2) / (9 pi (1 - nu)).
+PHI_MAX = 8.0
+
+_G0 = math.sqrt(32.0 / (9.0 * math.pi))
+# q(s) of the starting point: relative least squares against the exact inverse of core's
+# F on 8800 points spread over m in [1e-8, 1 - 1e-15] (fitted once; max error 4.3e-5).
+_Q = (0.01776873, -0.00595416, 0.06263913, -0.09713406, 0.06465333)
+# Near m = 1: F = 8 - 18 mc + mc^2 (_B - (9/4) log mc) + ..., _B fitted to 60-digit
+# mpmath at mc = 1e-10; one fixed-point step of that expansion starts mc below _NEAR_ONE
+# (relative error < 3e-4 there).
+_B = 9.613
+_NEAR_ONE = 1e-2
+_SERIES_BELOW = 0.05
+_TOL = 1e-7
+_NOISE = 4e-15  # F is known to ~2e-15 relative: a residual below this carries no information
+MAX_ITER = 60
+
+
+def _derivative_series(n: int) -> tuple[float, ...]:
+    """Coefficients of J'(m) = sum d_k m^k, from J = sum c_k m^k (``core.elliptic``),
+    highest first for Horner."""
+    c = [3.0 * math.pi / 16.0]
+    for k in range(n):
+        c.append(c[-1] * (k + 0.5) ** 2 / ((k + 3.0) * (k + 1.0)))
+    return tuple((k + 1) * c[k + 1] for k in range(n))[::-1]
+
+
+_DJ = _derivative_series(9)  # truncation < 0.05^9 relative
+
+
+def load_factor(
+    preload: float, R: float, G: float, nu: float, H: ArrayLike
+) -> NDArray[np.float64]:
+    """Phi = 9 pi (1 - nu) N / (4 G R^(1/2) H^(3/2)) (dimensionless), the value F(tau0) must
+    take for a mean contact force N (eq 10 with P_imp = 2 pi N / omega); inf where H = 0.
+    N in newtons, R and H in m, G in Pa."""
+    H = np.asarray(H, dtype=float)
+    with np.errstate(divide="ignore"):
+        return (9.0 * math.pi * (1.0 - nu) * preload / (4.0 * G * math.sqrt(R))) / (H * np.sqrt(H))
+
+
+def slope(m: NDArray[np.float64], mc: NDArray[np.float64], F: NDArray[np.float64]
+          ) -> NDArray[np.float64]:
+    """dF/dm at m (with mc = 1 - m and F = F(m) given), 0 < m < 1."""
+    out = np.empty_like(m)
+    small = m < _SERIES_BELOW
+    if small.any():
+        ms = m[small]
+        dj = np.full(ms.shape, _DJ[0])
+        for d in _DJ[1:]:
+            dj *= ms
+            dj += d
+        out[small] = 2.0 * F[small] / ms + 12.0 * ms * ms * dj
+    big = ~small
+    if big.any():
+        mb, mcb = m[big], mc[big]
+        k, e = ellipkm1(mcb), ellipe(mb)
+        out[big] = 2.0 * (F[big] + (8.0 - 7.0 * mb) * e - mcb * (8.0 - 3.0 * mb) * k) / mb
+    return out
+
+
+def _start(phi: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Starting point (m, mc) for 0 < phi < 8."""
+    s = np.sqrt(phi / PHI_MAX)
+    q = (((_Q[4] * s + _Q[3]) * s + _Q[2]) * s + _Q[1]) * s + _Q[0]
+    m = s * (_G0 + (1.0 - _G0) * s + s * (1.0 - s) * q)
+    mc = 1.0 - m
+    gap = PHI_MAX - phi  # exact for phi >= 4
+    near = np.flatnonzero(gap < 18.0 * _NEAR_ONE)
+    if near.size:
+        first = gap[near] / 18.0
+        with np.errstate(divide="ignore"):  # gap = 0 is excluded by the caller
+            second = (gap[near] + first * first * (_B - 2.25 * np.log(first))) / 18.0
+        mc[near], m[near] = second, 1.0 - second
+    return m, mc
+
+
+def solve(phi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(m, mc) with F(m) = phi, m = (1 - sin tau0) / 2 and mc = 1 - m, elementwise;
+    nan where phi >= 8 (the contact never opens) or phi is nan. phi must be > 0.
+
+    Raises RuntimeError if some point has not converged after MAX_ITER steps (never
+    observed: it would be a bug, not an answer)."""
+    phi = np.asarray(phi, dtype=float)
+    m_out = np.full(phi.shape, np.nan)
+    mc_out = np.full(phi.shape, np.nan)
+    opens = phi < PHI_MAX
+    if not opens.any():
+        return m_out, mc_out
+    p = phi[opens]
+    m, mc = _start(p)
+    lo, lo_c = np.zeros_like(p), np.ones_like(p)  # F(lo) <= p
+    hi, hi_c = np.ones_like(p), np.zeros_like(p)  # F(hi) >= p
+    m_done, mc_done = np.empty_like(p), np.empty_like(p)
+    active = np.arange(p.size)  # points still iterating; the arrays above are theirs
+    for _ in range(MAX_ITER):
+        F = impulse_factor(m, mc)
+        f = F - p
+        below, above = f <= 0.0, f >= 0.0
+        lo, lo_c = np.where(below, m, lo), np.where(below, mc, lo_c)
+        hi, hi_c = np.where(above, m, hi), np.where(above, mc, hi_c)
+        step = f / slope(m, mc, F)
+        m_new, mc_new = m - step, mc + step
+        inside = (m_new >= lo) & (mc_new >= hi_c)  # each end compared where it is exact
+        done = inside & ((np.abs(step) <= _TOL * np.minimum(m, mc))
+                         | (np.abs(f) <= _NOISE * p))
+        m = np.where(inside, m_new, 0.5 * (lo + hi))
+        mc = np.where(inside, mc_new, 0.5 * (lo_c + hi_c))
+        if done.all():
+            m_done[active], mc_done[active] = m, mc
+            break
+        m_done[active[done]], mc_done[active[done]] = m[done], mc[done]
+        keep = ~done
+        active, p, m, mc = active[keep], p[keep], m[keep], mc[keep]
+        lo, lo_c, hi, hi_c = lo[keep], lo_c[keep], hi[keep], hi_c[keep]
+    else:
+        raise RuntimeError(f"tau0: the balance F(tau0) = Phi did not converge in {MAX_ITER} steps")
+    m_out[opens], mc_out[opens] = m_done, mc_done
+    return m_out, mc_out
+
+
+def tau0_of(m: ArrayLike, mc: ArrayLike) -> NDArray[np.float64]:
+    """tau0 (rad) of m = (1 - sin tau0) / 2 = sin^2(e/2), mc = 1 - m, without cancellation:
+    pi/2 - 2 arcsin(sqrt m) for m <= 1/2, 2 arcsin(sqrt mc) - pi/2 otherwise; nan stays nan."""
+    m, mc = np.asarray(m, dtype=float), np.asarray(mc, dtype=float)
+    low = m <= 0.5
+    a = np.arcsin(np.sqrt(np.where(low, m, mc)))
+    return np.where(low, math.pi / 2 - 2.0 * a, 2.0 * a - math.pi / 2)

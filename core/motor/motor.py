@@ -1,0 +1,171 @@
+"""The motor of Fig. 1 with the rotor held: drive, start of contact and stall thrust along
+the rod, vectorised over the contact point x0. See docs/physics.md, section 10.
+
+    from core.motor import Rod, Motor
+    rod = Rod(half_length=0.02, thickness=4e-3, nu_rod=0.3, amplitude=10e-6, frequency=40e3)
+    m = Motor(rod, R=5e-3, G=24e9, nu=0.31, mu=0.2, preload=0.05)
+    x0 = np.linspace(-0.0199, 0.0199, 1000)
+    m.psi(x0), m.tau0(x0), m.stall_thrust(x0)   # 1, rad, N (signed); nan: never opens
+    p = m.profile(x0)                             # every quantity at once (MotorProfile)
+    c = m.contact(-0.01)                          # core.Contact of one point, SI scales set
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from core.contact import Contact
+from core.motor import balance, thrust
+from core.motor.rod import POSITIVE, Rod
+from core.validation import check_param
+
+
+@dataclass(frozen=True)
+class MotorProfile:
+    """Every quantity of the held-rotor motor at the points x0 (read-only arrays of
+    x0's shape). SI: x0, u0, H, h (m), stall_thrust (N). Dimensionless: psi, tan_theta,
+    load_factor (Phi: the F(tau0) the preload requires), m0 = (1 - sin tau0) / 2, tau0
+    (rad), impulse_ratio (T_imp / (mu P_imp), eq 41, in [0, 1]) and thrust_ratio (the
+    signed stall thrust over mu N, in [-1, 1]). ``opens`` is False where the contact never
+    opens (Phi >= 8): the model does not apply there and every quantity that depends on
+    tau0 is nan."""
+
+    x0: NDArray[np.float64]
+    u0: NDArray[np.float64]
+    H: NDArray[np.float64]
+    tan_theta: NDArray[np.float64]
+    psi: NDArray[np.float64]
+    load_factor: NDArray[np.float64]
+    opens: NDArray[np.bool_]
+    m0: NDArray[np.float64]
+    tau0: NDArray[np.float64]
+    h: NDArray[np.float64]
+    impulse_ratio: NDArray[np.float64]
+    thrust_ratio: NDArray[np.float64]
+    stall_thrust: NDArray[np.float64]
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            value = np.array(getattr(self, f.name))  # a copy, also of 0-d results
+            value.setflags(write=False)
+            object.__setattr__(self, f.name, value)
+
+
+@dataclass(frozen=True)
+class Motor:
+    """A rotor on the rod of Fig. 1, modelled as the paper does: both contacting bodies
+    identical spheres of radius R (m), shear modulus G (Pa), Poisson ratio nu and friction
+    coefficient mu, pressed together by a steady ``preload`` N (newtons: the rotor's
+    weight, or a spring).
+
+    Validated: ``rod`` a ``Rod``; R, G, nu, mu in core's domain (``core.validation.DOMAIN``,
+    the same as ``Contact.from_physical``); preload > 0. Every method takes x0 (m) as a
+    scalar or array with |x0| < L and returns arrays of its shape.
+    """
+
+    rod: Rod
+    R: float
+    G: float
+    nu: float
+    mu: float
+    preload: float
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.rod, Rod):
+            raise ValueError(f"rod must be a core.motor.Rod, got {self.rod!r}")
+        for name in ("R", "G", "nu", "mu"):
+            object.__setattr__(self, name, check_param(name, getattr(self, name)))
+        object.__setattr__(self, "preload", POSITIVE.check("preload", self.preload))
+
+    @property
+    def tan_theta0(self) -> float:
+        """tan theta0 = mu (2 - nu) / (2 (1 - nu)) (eq 23): psi = tan theta / tan theta0."""
+        return self.mu * (2.0 - self.nu) / (2.0 * (1.0 - self.nu))
+
+    @property
+    def theta0(self) -> float:
+        """Critical angle of incidence arctan(tan theta0) (eq 23), radians."""
+        return math.atan(self.tan_theta0)
+
+    # ---- single quantities ---------------------------------------------------------
+    def psi(self, x0: ArrayLike) -> NDArray[np.float64]:
+        """psi(x0) = tan theta(x0) / tan theta0 (eq 23 with eqs 1, 2), dimensionless; 0 at
+        the centre, growing without bound towards the ends."""
+        u0, H = self.rod.drive(self.rod.check_x0(x0))
+        return self._psi(u0, H)
+
+    def load_factor(self, x0: ArrayLike) -> NDArray[np.float64]:
+        """Phi(x0) = 9 pi (1 - nu) N / (4 G R^(1/2) H^(3/2)), the value of F(tau0) the
+        preload requires (eq 10, mean contact force N); >= 8: the contact never opens."""
+        _, H = self.rod.drive(self.rod.check_x0(x0))
+        return self._load_factor(H)
+
+    def opens(self, x0: ArrayLike) -> NDArray[np.bool_]:
+        """True where the contact opens once per period (Phi < 8), i.e. where this model
+        applies; False near the ends of the rod."""
+        return self.load_factor(x0) < balance.PHI_MAX
+
+    def tau0(self, x0: ArrayLike) -> NDArray[np.float64]:
+        """tau0(x0) (rad) in (-pi/2, pi/2): start of contact fixed by the preload,
+        F(tau0) = Phi (eq 10, 11); nan where the contact never opens."""
+        m0, mc0 = balance.solve(self.load_factor(x0))
+        return balance.tau0_of(m0, mc0)
+
+    def stall_thrust(self, x0: ArrayLike) -> NDArray[np.float64]:
+        """Mean tangential force on the held rotor (N), signed: positive along +x on the
+        rotor's bottom surface (counter-clockwise rotation, x0 < 0), negative for x0 > 0,
+        0 at the centre; nan where the contact never opens. mu N times eq 41."""
+        return self.profile(x0).stall_thrust
+
+    # ---- everything at once --------------------------------------------------------
+    def profile(self, x0: ArrayLike) -> MotorProfile:
+        """Every quantity of ``MotorProfile`` at x0, from one evaluation of the drive and
+        one root solve."""
+        x = self.rod.check_x0(x0)
+        u0, H = self.rod.drive(x)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            tan_theta = np.abs(u0) / H
+        psi = tan_theta / self.tan_theta0
+        phi = self._load_factor(H)
+        m0, mc0 = balance.solve(phi)
+        ratio = thrust.impulse_ratio(psi, m0, mc0)
+        force = thrust.stall_thrust(ratio, u0, self.mu, self.preload)
+        return MotorProfile(
+            x0=x, u0=u0, H=H, tan_theta=tan_theta, psi=psi, load_factor=phi,
+            opens=phi < balance.PHI_MAX, m0=m0, tau0=balance.tau0_of(m0, mc0),
+            h=H * (mc0 - m0), impulse_ratio=ratio,
+            thrust_ratio=force / (self.mu * self.preload), stall_thrust=force,
+        )
+
+    def contact(self, x0: float) -> Contact:
+        """The paper's contact at one point x0, as a ``core.Contact`` with SI ``scales``
+        (its drive along +x: multiply tangential results by sign u0(x0) for the rod's
+        frame). ValueError where the contact never opens. Its
+        ``scales.normal_impulse / scales.period`` is the preload and
+        ``scales.tangential_impulse / scales.period`` the magnitude of the stall thrust."""
+        x = self.rod.check_x0(x0)
+        if x.ndim != 0:
+            raise ValueError(f"x0 must be one number for contact(), got shape {x.shape}")
+        p = self.profile(x)
+        if not p.opens:
+            raise ValueError(
+                f"x0 = {float(x)!r}: the contact never opens there (Phi = "
+                f"{float(p.load_factor):g} >= 8): the preload exceeds what an intermittent "
+                "contact can carry, and the model does not apply"
+            )
+        return Contact.from_physical(
+            R=self.R, G=self.G, nu=self.nu, mu=self.mu, H=float(p.H), u0=abs(float(p.u0)),
+            h=float(p.h), omega=self.rod.omega,
+        )
+
+    # ---- helpers -------------------------------------------------------------------
+    def _psi(self, u0: NDArray[np.float64], H: NDArray[np.float64]) -> NDArray[np.float64]:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.abs(u0) / H / self.tan_theta0
+
+    def _load_factor(self, H: NDArray[np.float64]) -> NDArray[np.float64]:
+        return balance.load_factor(self.preload, self.R, self.G, self.nu, H)
