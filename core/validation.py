@@ -144,8 +144,9 @@ def as_reals(x: ArrayLike, name: str) -> NDArray[np.float64]:
     """
     try:
         a = np.asarray(x)
-    except (ValueError, TypeError) as err:  # e.g. ragged nested lists
-        raise type(err)(f"{name} must be an array of real numbers: {err}") from err
+    except (ValueError, TypeError) as err:  # e.g. ragged nested lists, undecodable bytes
+        kind = TypeError if isinstance(err, TypeError) else ValueError
+        raise kind(f"{name} must be an array of real numbers: {err}") from err
     if a.dtype.kind not in "iuf":
         raise TypeError(f"{name} must be real numbers (int or float), got dtype {a.dtype}")
     if a.dtype != np.float64:
