@@ -26,9 +26,7 @@ $(VENV)/.installed: pyproject.toml constraints.txt
 venv: $(VENV)/.installed
 
 serve: venv
-	$(VENV)/bin/panel serve app/main.py --port $(PORT) --address 0.0.0.0 \
-		--allow-websocket-origin=localhost:$(PORT) --allow-websocket-origin=127.0.0.1:$(PORT) \
-		--liveness --index main
+	$(PY) -m app.serve --port $(PORT)
 
 # Debian's Chromium for the browser tests (no browser download works here).
 browser:

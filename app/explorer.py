@@ -11,6 +11,7 @@ depends on tau.  All changes of one step are sent to the browser in one message
 from __future__ import annotations
 
 import contextlib
+import html
 import io
 import math
 import time
@@ -50,6 +51,10 @@ URL_DELAY_S = 0.4  # the URL follows the parameters this long after the last cha
 DISC_KEY = " ".join(
     f'<span style="color:{PHASE_COLORS[p]}; font-size: 1.3em">●</span> {name}'
     for p, name in ((1, "stick"), (2, "slip"), (4, "counter-slip")))
+
+#: The warning box above the plots (rejected URL values).
+MESSAGE_STYLE = {"background": "#fff3cd", "color": "#664d03", "border": "1px solid #ffe69c",
+                 "border-radius": "6px", "padding": "0.6em 1em"}
 
 #: Large type for a projector; a little smaller on a phone.
 CSS = """
@@ -338,8 +343,8 @@ class Explorer:
                                      title="Physical inputs", collapsed=True,
                                      sizing_mode="stretch_width")
 
-        self.message = pn.pane.Alert("", alert_type="warning", visible=False,
-                                     sizing_mode="stretch_width", name="query_message")
+        self.message = pn.pane.HTML("", visible=False, sizing_mode="stretch_width",
+                                    name="query_message", styles=MESSAGE_STYLE)
         self.show_messages(self.messages)
         self.formulas = pn.pane.Markdown("", sizing_mode="stretch_width")
         self.downloads = {
@@ -365,9 +370,10 @@ class Explorer:
     def show_messages(self, messages: list[str]) -> None:
         """Show warnings (e.g. rejected URL values) above the plots; [] hides them.
 
-        Unchanged messages are not sent again: re-rendering the alert restyles the page.
+        Messages quote what the user sent (the URL's values): they are shown as text,
+        never as markup.  Unchanged messages are not sent again.
         """
-        text = "\n".join(f"- {m}" for m in messages)
+        text = "<br>".join(html.escape(m) for m in messages)
         if text != self.message.object or self.message.visible != bool(messages):
             self.message.param.update(object=text, visible=bool(messages))
 

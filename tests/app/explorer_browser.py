@@ -1,6 +1,6 @@
 """Helpers shared by the browser tests and the latency benchmark.
 
-Starts the explorer with `panel serve` (unless EXPLORER_URL names a running one) and
+Starts the explorer with `python -m app.serve` (unless EXPLORER_URL names a running one) and
 launches Debian's Chromium through Playwright.  No browser is ever downloaded.
 """
 
@@ -62,23 +62,21 @@ def wait_for_http(url: str, timeout: float = 60.0) -> None:
 
 @contextlib.contextmanager
 def explorer_server() -> Iterator[str]:
-    """Yield the explorer's URL: EXPLORER_URL if set, else a fresh `panel serve`."""
+    """Yield the explorer's URL: EXPLORER_URL if set, else a fresh `python -m app.serve`."""
     url = os.environ.get("EXPLORER_URL")
     if url:
         yield url.rstrip("/")
         return
     port = free_port()
     log = tempfile.TemporaryFile("w+")
-    cmd = [sys.executable, "-m", "panel", "serve", "app/main.py", "--port", str(port),
-           "--address", "127.0.0.1", f"--allow-websocket-origin=127.0.0.1:{port}",
-           "--liveness", "--index", "main"]
+    cmd = [sys.executable, "-m", "app.serve", "--port", str(port)]
     proc = subprocess.Popen(cmd, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT)
     try:
         try:
             wait_for_http(f"http://127.0.0.1:{port}/liveness")
         except TimeoutError as err:
             log.seek(0)
-            raise TimeoutError(f"{err}; panel serve said:\n{log.read()[-3000:]}") from err
+            raise TimeoutError(f"{err}; the server said:\n{log.read()[-3000:]}") from err
         yield f"http://127.0.0.1:{port}/main"
     finally:
         proc.terminate()

@@ -1,7 +1,8 @@
 """The explorer in a real browser: Debian's Chromium driven by Playwright (sync API).
 
-Runs against EXPLORER_URL when set (e.g. a container), else against a `panel serve`
-started here.  `pytest -m smoke` selects the short subset.
+Runs against EXPLORER_URL when set (e.g. a container), else against a
+`python -m app.serve` started here (fixtures in conftest.py).
+`pytest -m smoke` selects the short subset.
 """
 
 from __future__ import annotations
@@ -12,11 +13,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 from explorer_browser import (
-    CHROMIUM_ARGS,
     ROOT,
-    chromium_path,
     column,
-    explorer_server,
     open_explorer,
 )
 
@@ -28,24 +26,6 @@ pytestmark = pytest.mark.browser
 
 ARTIFACTS = ROOT / "artifacts"
 IGNORED_CONSOLE = ("could not set initial ranges",)  # Bokeh's note on hidden figures
-
-
-@pytest.fixture(scope="module")
-def url():
-    with explorer_server() as u:
-        yield u
-
-
-@pytest.fixture(scope="module")
-def browser():
-    path = chromium_path()
-    if path is None:
-        pytest.skip("/usr/bin/chromium is absent and could not be installed (apt-get)")
-    sync_api = pytest.importorskip("playwright.sync_api")
-    with sync_api.sync_playwright() as p:
-        b = p.chromium.launch(executable_path=path, args=CHROMIUM_ARGS)
-        yield b
-        b.close()
 
 
 def errors(console: list[str]) -> list[str]:

@@ -1,0 +1,180 @@
+"""What reaches the explorer from outside is shown as text and bounded (app/serve.py).
+
+In the browser: markup and script payloads in every query parameter run nothing,
+inject no element and are shown literally.  Over HTTP and the websocket: every page
+carries a nonce-based Content-Security-Policy, a foreign Origin's websocket upgrade
+gets 403, and oversized or malformed websocket messages close only their connection.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import re
+import urllib.request
+from concurrent.futures import ThreadPoolExecutor
+from urllib.parse import urlencode, urlsplit
+
+import pytest
+from explorer_browser import JS_READY
+from tornado.httpclient import HTTPClientError, HTTPRequest
+from tornado.websocket import websocket_connect
+
+from app.serve import SESSION
+from app.state import QUERY_KEYS, parse_query
+
+#: One payload per query parameter, each marked so that an injected element is found.
+PAYLOADS = {
+    "psi": "<img src=x id=xss-psi onerror=alert('psi')>",
+    "tau0": "<script id=xss-tau0>alert('tau0')</script>",
+    "mu": "\"><svg id=xss-mu onload=alert('mu')>",
+    "nu": "<b id=xss-nu>nu</b>",
+    "tau": "<iframe id=xss-tau src=javascript:alert('tau')></iframe>",
+    "log_psi": "<details id=xss-log open ontoggle=alert('log')>",
+    "preset": "[click](javascript:alert('preset')) <a id=xss-preset href=x>a</a>",
+    "<img src=x id=xss-key onerror=alert('key')>": "1",
+}
+
+#: JavaScript: elements anywhere in the page (shadow roots included) matching a selector.
+JS_FIND = """(selector) => {
+  const found = [];
+  const walk = (root) => {
+    root.querySelectorAll(selector).forEach((e) => found.push(e.outerHTML.slice(0, 80)));
+    root.querySelectorAll('*').forEach((e) => { if (e.shadowRoot) walk(e.shadowRoot); });
+  };
+  walk(document);
+  return found;
+}"""
+
+#: JavaScript: the text of the named Panel pane's element (its shadow root's text).
+JS_TEXT_OF_MESSAGE = """() => {
+  const texts = [];
+  const walk = (root) => {
+    root.querySelectorAll('*').forEach((e) => {
+      if (e.shadowRoot) {
+        const t = e.shadowRoot.textContent || '';
+        if (t.includes('is not a number') || t.includes('unknown parameter')) texts.push(t);
+        walk(e.shadowRoot);
+      }
+    });
+  };
+  walk(document);
+  return texts.sort((a, b) => a.length - b.length)[0] || '';
+}"""
+
+
+def test_query_payloads_run_nothing_and_show_as_text(browser, url) -> None:
+    assert set(QUERY_KEYS) <= set(PAYLOADS), "a query parameter has no payload"
+    page = browser.new_page(viewport={"width": 1400, "height": 1000})
+    dialogs: list[str] = []
+    page.on("dialog", lambda d: (dialogs.append(d.message), d.dismiss()))
+    page.goto(f"{url}?{urlencode(PAYLOADS)}")
+    page.wait_for_function(JS_READY, timeout=60_000)
+    page.wait_for_timeout(1500)  # let any injected handler fire
+    assert dialogs == []
+    assert page.evaluate(JS_FIND, "[id^='xss'], a[href^='javascript'], iframe") == []
+    shown = page.evaluate(JS_TEXT_OF_MESSAGE)
+    _, messages = parse_query(PAYLOADS)
+    assert len(messages) == len(PAYLOADS)
+    for message in messages:  # each shown as the text it is, markup and all
+        assert message in shown, (message, shown)
+    page.close()
+
+
+def test_pages_carry_a_nonce_content_security_policy(url) -> None:
+    with urllib.request.urlopen(url) as r:
+        csp = r.headers["Content-Security-Policy"]
+        body = r.read().decode()
+        assert r.headers["X-Content-Type-Options"] == "nosniff"
+    nonce = re.search(r"'nonce-([^']+)'", csp).group(1)
+    assert "'unsafe-inline'" not in csp.split("script-src")[1].split(";")[0]
+    tags = re.findall(r"<script\b[^>]*>", body)
+    assert tags and all(f'nonce="{nonce}"' in t for t in tags)
+    with urllib.request.urlopen(url) as r:  # a fresh nonce per response
+        assert nonce not in r.headers["Content-Security-Policy"]
+
+
+def _session_token(url: str) -> str:
+    with urllib.request.urlopen(url) as r:
+        page = r.read().decode()
+    return re.search(r'\\?"token\\?":\s*\\?"([^"\\]+)', page).group(1)
+
+
+def run(coro) -> object:
+    """Run a coroutine on a loop of its own (Playwright's sync API owns this thread's)."""
+    with ThreadPoolExecutor(1) as pool:
+        return pool.submit(asyncio.run, coro).result(timeout=60)
+
+
+def _ws(url: str, origin: str, token: str):
+    parts = urlsplit(url)
+    req = HTTPRequest(f"ws://{parts.netloc}{parts.path}/ws",
+                      headers={"Origin": origin, "Sec-WebSocket-Protocol": f"bokeh, {token}"})
+    return websocket_connect(req, max_message_size=64 << 20)
+
+
+def test_websocket_from_a_foreign_origin_is_refused(url) -> None:
+    own = "http://" + urlsplit(url).netloc
+
+    async def connect(origin: str) -> int:
+        try:
+            conn = await _ws(url, origin, _session_token(url))
+        except HTTPClientError as err:
+            return err.code
+        conn.close()
+        return 101
+
+    assert run(connect("http://evil.example")) == 403
+    assert run(connect(own)) == 101
+
+
+async def _connect(url: str):
+    """A Bokeh websocket connection from the page's own origin, past the server's ACK."""
+    conn = await _ws(url, "http://" + urlsplit(url).netloc, _session_token(url))
+    for _ in range(3):  # the ACK: header, metadata, content
+        await conn.read_message()
+    return conn
+
+
+async def _server_info(conn) -> str:
+    """Ask for the server's info over a Bokeh connection; the reply's msgtype."""
+    for frame in ({"msgid": "info-1", "msgtype": "SERVER-INFO-REQ"}, {}, {}):
+        await conn.write_message(json.dumps(frame))
+    while True:
+        header = json.loads(await asyncio.wait_for(conn.read_message(), 10))
+        if header.get("reqid") == "info-1":
+            return header["msgtype"]
+
+
+async def _closed(conn) -> int | None:
+    """Wait until the server closes `conn`; its close code."""
+    while await asyncio.wait_for(conn.read_message(), 10) is not None:
+        pass
+    return conn.close_code
+
+
+#: Messages (Bokeh's: header, metadata, content frames) that must close their connection,
+#: with the close code: 1009 too big; 10000 Bokeh's "failed to parse a message".
+BAD_MESSAGES = {
+    "oversized": (["x" * (SESSION["websocket_max_message_size"] + 1)], 1009),
+    "garbage": (["not json at all", "{}", "{}"], 10000),
+    "no-msgid": ([json.dumps({"msgtype": "PATCH-DOC"}), "{}", "{}"], 10000),
+}
+
+
+@pytest.mark.parametrize("name", BAD_MESSAGES)
+def test_bad_websocket_messages_close_only_their_connection(url, name) -> None:
+    frames, expected = BAD_MESSAGES[name]
+
+    async def send() -> tuple[int | None, str]:
+        conn = await _connect(url)
+        assert await _server_info(conn) == "SERVER-INFO-REPLY"
+        for frame in frames:
+            await conn.write_message(frame)
+        code = await _closed(conn)
+        other = await _connect(url)  # the server goes on serving other connections
+        reply = await _server_info(other)
+        other.close()
+        return code, reply
+
+    assert run(send()) == (expected, "SERVER-INFO-REPLY")
