@@ -5,12 +5,22 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
+TEXT = {"method", "regime"}
+INTEGER = {"resolution", "steps"}
+
+
+def _value(key: str, text: str):
+    if key in TEXT:
+        return text
+    if key in INTEGER:
+        return int(text)
+    return float(text)
+
 
 def read_csv(path: Path) -> list[dict]:
     """Rows written by ``write_csv`` (numbers back to int / float)."""
     with path.open() as fh:
-        return [{k: (v if k == "method" else int(v) if k == "resolution" else float(v))
-                 for k, v in row.items()} for row in csv.DictReader(fh)]
+        return [{k: _value(k, v) for k, v in row.items()} for row in csv.DictReader(fh)]
 
 
 def write_csv(rows: list[dict], path: Path, fields: list[str]) -> None:
