@@ -18,10 +18,12 @@ mc = 1 - m alongside, so that deep preload (m near 1) keeps its digits. F itself
 always ``core.elliptic.impulse_factor`` (one source of truth for eq 11); this module adds
 only what the root solve needs:
 
-- a starting point: m = s (g0 + (1 - g0) s + s (1 - s) q(s)), s = sqrt(Phi / 8),
-  g0 = sqrt(32 / (9 pi)) (from F ~ (9 pi / 4) m^2 at small m), q a quartic fitted once to
-  the exact inverse (relative error < 5e-5 for every Phi in (0, 8)); for mc < 0.01,
-  mc from F = 8 - 18 mc + mc^2 (9.613 - (9/4) log mc) + ... (relative error < 3e-4);
+- a starting point from a table of the inverse, built once at import from core's F:
+  nodes m = 0.95 i / 192 and mc = 0.05 / 1.1^j (down to 1e-13), with s = sqrt(F / 8)
+  and the slope dm/ds, interpolated by cubic Hermite in s (in u = 1 - s, formed as
+  (8 - Phi) / (8 (1 + s)), where s >= 1/2, so that mc keeps its digits near Phi = 8).
+  Relative error of m and mc below 1e-8 for Phi < 7.9, and at the rounding level of
+  the problem above;
 - the slope dF/dm = 2 F / m + 12 m^2 J'(m), with
   J'(m) = ((8 - 7m) E(m) - mc (8 - 3m) K(m)) / (6 m^3) for m >= 0.05 (K, E with
   parameter m) and its hypergeometric series below (the closed form cancels there);
@@ -30,8 +32,8 @@ only what the root solve needs:
   its midpoint. A point is done when its step is below 1e-7 of min(m, mc) (Newton
   converges quadratically: dF/dm > 0, d2F/dm2 bounded up to a mild log at m = 1, so the
   remaining error is ~1e-14 of min(m, mc)), or when |F - Phi| is at the rounding level
-  of F itself (4e-15 Phi: near Phi = 8 no step can do better). Two evaluations of F
-  suffice for most points.
+  of F itself (4e-15 Phi: near Phi = 8 no step can do better). One evaluation of F
+  suffices for most points (the Newton step from the table's start is below 1e-7).
 
 tau0 = pi/2 - 2 arcsin(sqrt m) for m <= 1/2, and 2 arcsin(sqrt mc) - pi/2 above, each
 exact to rounding. Near Phi = 8 the problem itself is ill-conditioned: F(m) has absolute
@@ -52,19 +54,14 @@ from core.elliptic import impulse_factor
 #: in units of 4 G R^(1/2) H^(3/2) / (9 pi (1 - nu)).
 PHI_MAX = 8.0
 
-_G0 = math.sqrt(32.0 / (9.0 * math.pi))
-# q(s) of the starting point: relative least squares against the exact inverse of core's
-# F on 8800 points spread over m in [1e-8, 1 - 1e-15] (fitted once; max error 4.3e-5).
-_Q = (0.01776873, -0.00595416, 0.06263913, -0.09713406, 0.06465333)
-# Near m = 1: F = 8 - 18 mc + mc^2 (_B - (9/4) log mc) + ..., _B fitted to 60-digit
-# mpmath at mc = 1e-10; one fixed-point step of that expansion starts mc below _NEAR_ONE
-# (relative error < 3e-4 there).
-_B = 9.613
-_NEAR_ONE = 1e-2
+_G0 = math.sqrt(32.0 / (9.0 * math.pi))  # dm/ds at s = 0: F ~ (9 pi / 4) m^2
 _SERIES_BELOW = 0.05
 _TOL = 1e-7
+_TOL_FIRST = 1e-8  # first step, taken with the table's slope
+_TRUSTED = 7.9  # below this Phi the table's dF/dm is within 3e-7 (tests/core/test_motor.py)
 _NOISE = 4e-15  # F is known to ~2e-15 relative: a residual below this carries no information
 MAX_ITER = 60
+_TINY = 1e-300
 
 
 def _derivative_series(n: int) -> tuple[float, ...]:
@@ -110,20 +107,57 @@ def slope(m: NDArray[np.float64], mc: NDArray[np.float64], F: NDArray[np.float64
     return out
 
 
-def _start(phi: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Starting point (m, mc) for 0 < phi < 8."""
+def _inverse_table() -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The inverse of s = sqrt(F(m) / 8) as cubic pieces between nodes, F from
+    ``core.elliptic``: nodes from m = 0 (s = 0, dm/ds = g0) to m = 1 (s = 1,
+    dm/ds = 16 / 18). Returns -u at the nodes (ascending, u = 1 - s, for the search) and
+    one column per interval of: s_i, 1 / (s_i+1 - s_i), u_i, 1 / (u_i - u_i+1), m_i, mc_i
+    and the coefficients q1, q2, q3 of the cubic Hermite piece in t in [0, 1]:
+    m = m_i + t (q1 + t (q2 + t q3)), mc = mc_i - t (q1 + t (q2 + t q3))."""
+    m_lin = np.linspace(0.0, 0.95, 193)[1:]
+    mc_geo = 0.05 * 1.1 ** -np.arange(1.0, 280.0)  # down to 1e-13 (8 - F: 1.8e-12)
+    m = np.concatenate([m_lin, 1.0 - mc_geo])
+    mc = np.concatenate([1.0 - m_lin, mc_geo])
+    F = impulse_factor(m, mc)
+    s = np.sqrt(F / PHI_MAX)
+    u = (PHI_MAX - F) / (PHI_MAX * (1.0 + s))
+    if not (np.all(np.diff(u) < 0.0) and u[-1] > 0.0):
+        raise RuntimeError("core.motor.balance: the inverse table of F is not monotone")
+    d = 2.0 * PHI_MAX * s / slope(m, mc, F)
+    S, U = np.concatenate([[0.0], s, [1.0]]), np.concatenate([[1.0], u, [0.0]])
+    M, MC = np.concatenate([[0.0], m, [1.0]]), np.concatenate([[1.0], mc, [0.0]])
+    D = np.concatenate([[_G0], d, [16.0 / 18.0]])
+    h = np.diff(S)
+    dm = np.diff(M)
+    q1, e1 = h * D[:-1], h * D[1:]  # dm/dt at the two ends of each piece
+    q2 = 3.0 * dm - 2.0 * q1 - e1
+    q3 = q1 + e1 - 2.0 * dm
+    columns = np.stack([S[:-1], 1.0 / h, U[:-1], -1.0 / np.diff(U), M[:-1], MC[:-1], q1, q2, q3])
+    return -U, columns
+
+
+def _start(phi: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+    """Starting point (m, mc) for 0 < phi < 8, and dF/dm there (= 16 s / (dm/ds)), from
+    the cubic pieces of the inverse table."""
     s = np.sqrt(phi / PHI_MAX)
-    q = (((_Q[4] * s + _Q[3]) * s + _Q[2]) * s + _Q[1]) * s + _Q[0]
-    m = s * (_G0 + (1.0 - _G0) * s + s * (1.0 - s) * q)
-    mc = 1.0 - m
-    gap = PHI_MAX - phi  # exact for phi >= 4
-    near = np.flatnonzero(gap < 18.0 * _NEAR_ONE)
-    if near.size:
-        first = gap[near] / 18.0
-        with np.errstate(divide="ignore"):  # gap = 0 is excluded by the caller
-            second = (gap[near] + first * first * (_B - 2.25 * np.log(first))) / 18.0
-        mc[near], m[near] = second, 1.0 - second
-    return m, mc
+    u = (PHI_MAX - phi) / (PHI_MAX * (1.0 + s))  # 1 - s with the digits of 8 - phi
+    # located by u (exact to 1e-16 absolute everywhere, and relative near Phi = 8, where
+    # the nodes' s values are 1 - 1e-15 apart and round alike)
+    i = np.searchsorted(_NEG_U, -u, side="right")
+    np.clip(i, 1, _NEG_U.size - 1, out=i)
+    i -= 1
+    s0, inv_h, u0, inv_hu, m0, mc0, q1, q2, q3 = _COLUMNS.take(i, axis=1)
+    t = np.where(s < 0.5, (s - s0) * inv_h, (u0 - u) * inv_hu)
+    q = q1 + t * (q2 + t * q3)
+    dm_dt = q + t * (q2 + 2.0 * t * q3)
+    q *= t
+    m, mc = m0 + q, mc0 - q
+    np.maximum(mc, _TINY, out=mc)  # in the last piece (Phi within 2e-12 of 8) rounding
+    np.maximum(m, _TINY, out=m)  # could reach the ends, where F is not defined
+    return m, mc, (2.0 * PHI_MAX) * s / (dm_dt * inv_h)
+
+
+_NEG_U, _COLUMNS = _inverse_table()
 
 
 def solve(phi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -139,27 +173,33 @@ def solve(phi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     if not opens.any():
         return m_out, mc_out
     p = phi[opens]
-    m, mc = _start(p)
+    m, mc, d = _start(p)
+    trusted = p < _TRUSTED
     lo, lo_c = np.zeros_like(p), np.ones_like(p)  # F(lo) <= p
     hi, hi_c = np.ones_like(p), np.zeros_like(p)  # F(hi) >= p
     m_done, mc_done = np.empty_like(p), np.empty_like(p)
     active = np.arange(p.size)  # points still iterating; the arrays above are theirs
-    for _ in range(MAX_ITER):
+    for it in range(MAX_ITER):
         F = impulse_factor(m, mc)
         f = F - p
+        if it:
+            d = slope(m, mc, F)
+        step = f / d
+        m_new, mc_new = m - step, mc + step
+        inside = (m_new >= lo) & (mc_new >= hi_c)  # each end compared where it is exact
+        if it:
+            small = np.abs(step) <= _TOL * np.minimum(m, mc)
+        else:  # the table's slope is good to 3e-7 below _TRUSTED: demand a smaller step
+            small = (np.abs(step) <= _TOL_FIRST * np.minimum(m, mc)) & trusted
+        done = inside & (small | (np.abs(f) <= _NOISE * p))
+        if done.all():
+            m_done[active], mc_done[active] = m_new, mc_new
+            break
         below, above = f <= 0.0, f >= 0.0
         lo, lo_c = np.where(below, m, lo), np.where(below, mc, lo_c)
         hi, hi_c = np.where(above, m, hi), np.where(above, mc, hi_c)
-        step = f / slope(m, mc, F)
-        m_new, mc_new = m - step, mc + step
-        inside = (m_new >= lo) & (mc_new >= hi_c)  # each end compared where it is exact
-        done = inside & ((np.abs(step) <= _TOL * np.minimum(m, mc))
-                         | (np.abs(f) <= _NOISE * p))
         m = np.where(inside, m_new, 0.5 * (lo + hi))
         mc = np.where(inside, mc_new, 0.5 * (lo_c + hi_c))
-        if done.all():
-            m_done[active], mc_done[active] = m, mc
-            break
         m_done[active[done]], mc_done[active[done]] = m[done], mc[done]
         keep = ~done
         active, p, m, mc = active[keep], p[keep], m[keep], mc[keep]

@@ -119,7 +119,10 @@ class Motor:
         """Mean tangential force on the held rotor (N), signed: positive along +x on the
         rotor's bottom surface (counter-clockwise rotation, x0 < 0), negative for x0 > 0,
         0 at the centre; nan where the contact never opens. mu N times eq 41."""
-        return self.profile(x0).stall_thrust
+        u0, H = self.rod.drive(self.rod.check_x0(x0))
+        m0, mc0 = balance.solve(self._load_factor(H))
+        ratio = thrust.impulse_ratio(self._psi(u0, H), m0, mc0)
+        return thrust.stall_thrust(ratio, u0, self.mu, self.preload)
 
     # ---- everything at once --------------------------------------------------------
     def profile(self, x0: ArrayLike) -> MotorProfile:
@@ -129,7 +132,7 @@ class Motor:
         u0, H = self.rod.drive(x)
         with np.errstate(divide="ignore", invalid="ignore"):
             tan_theta = np.abs(u0) / H
-        psi = tan_theta / self.tan_theta0
+        psi = self._psi(u0, H)
         phi = self._load_factor(H)
         m0, mc0 = balance.solve(phi)
         ratio = thrust.impulse_ratio(psi, m0, mc0)

@@ -144,12 +144,39 @@ def test_balance_over_the_whole_range_of_phi() -> None:
     phi = np.concatenate([np.logspace(-300, -1, 300), np.linspace(0.1, 7.9, 600),
                           PHI_MAX - np.logspace(-14, -1, 100)])
     m0, mc0 = balance.solve(phi)
-    np.testing.assert_allclose(impulse_factor(m0, mc0), phi, rtol=1e-14)
-    assert np.all(np.diff(m0[np.argsort(phi)]) >= 0)  # monotone, as F is
+    np.testing.assert_allclose(impulse_factor(m0, mc0), phi, rtol=3e-14)
+    order = np.argsort(phi)
+    steps = np.diff(m0[order])
+    assert np.all(steps[phi[order][1:] < 7.99] >= 0)  # monotone, as F is, and within
+    assert np.all(steps >= -1e-15)  # the rounding of F (~1e-15 absolute) up to Phi = 8
     assert np.all((m0 > 0) & (mc0 > 0))
-    np.testing.assert_allclose(m0 + mc0, 1.0, rtol=0, atol=2.3e-16)
+    np.testing.assert_allclose(m0 + mc0, 1.0, rtol=0, atol=4.5e-16)  # two roundings
     tau0 = balance.tau0_of(m0, mc0)
     assert np.all((tau0 > -math.pi / 2) & (tau0 <= math.pi / 2))  # pi/2: e < 1e-16
+
+
+def test_the_starting_table_is_as_good_as_the_solver_assumes() -> None:
+    """The first Newton step uses the table's start and slope: both are checked here over
+    Phi < 7.9, where the solver trusts them (relative error 1e-8 and 3e-7)."""
+    phi = np.concatenate([np.logspace(-300, -1, 300), np.linspace(0.1, 7.9, 20001)])
+    m0, mc0 = balance.solve(phi)
+    m, mc, d = balance._start(phi)
+    assert np.max(np.abs(m / m0 - 1)) < 1e-8 and np.max(np.abs(mc / mc0 - 1)) < 1e-8
+    exact = balance.slope(m0, mc0, impulse_factor(m0, mc0))
+    assert np.max(np.abs(d / exact - 1)) < 3e-7
+
+
+def test_the_slope_is_dF_dm() -> None:
+    """dF/dm against 50-digit mpmath differentiation of F = 12 m^2 J(m)."""
+    m = np.array([1e-6, 0.01, 0.049, 0.051, 0.3, 0.7, 0.99, 1 - 1e-6, 1 - 1e-12])
+    mc = np.array([1 - 1e-6, 0.99, 0.951, 0.949, 0.7, 0.3, 0.01, 1e-6, 1e-12])
+    exact = balance.slope(m, mc, impulse_factor(m, mc))
+    with mp.workdps(50):
+        def F(x: mp.mpf) -> mp.mpf:
+            return 12 * x**2 * (2 * (2 * x - 1) * mp.ellipe(x)
+                                + (1 - x) * (2 - 3 * x) * mp.ellipk(x)) / (3 * x**2)
+        ref = [float(mp.diff(F, 1 - mp.mpf(c))) for c in mc]
+    np.testing.assert_allclose(exact, ref, rtol=1e-9)  # the solver needs ~1e-6
 
 
 def test_balance_has_no_root_from_eight_on() -> None:
