@@ -20,20 +20,23 @@ only what the root solve needs:
 
 - a starting point from a table of the inverse, built once at import from core's F:
   nodes m = 0.95 i / 192 and mc = 0.05 / 1.1^j (down to 1e-13), with s = sqrt(F / 8)
-  and the slope dm/ds, interpolated by cubic Hermite in s (in u = 1 - s, formed as
-  (8 - Phi) / (8 (1 + s)), where s >= 1/2, so that mc keeps its digits near Phi = 8).
-  Relative error of m and mc below 1e-8 for Phi < 7.9, and at the rounding level of
-  the problem above;
-- the slope dF/dm = 2 F / m + 12 m^2 J'(m), with
+  and the slope dm/ds, interpolated by cubic Hermite pieces in s (located by
+  u = 1 - s, formed as (8 - Phi) / (8 (1 + s)), and interpolated in u where s >= 1/2, so
+  that mc keeps its digits near Phi = 8). For Phi < 7.9 the start is good to 1e-8 and
+  the slope dF/dm the pieces imply to 3e-7 (both tested);
+- the exact slope dF/dm = 2 F / m + 12 m^2 J'(m), with
   J'(m) = ((8 - 7m) E(m) - mc (8 - 3m) K(m)) / (6 m^3) for m >= 0.05 (K, E with
   parameter m) and its hypergeometric series below (the closed form cancels there);
 - Newton steps on all points at once, safeguarded by a bracket [lo, hi] that every
   evaluation of F narrows (F is monotone): a step that leaves the bracket is replaced by
-  its midpoint. A point is done when its step is below 1e-7 of min(m, mc) (Newton
-  converges quadratically: dF/dm > 0, d2F/dm2 bounded up to a mild log at m = 1, so the
-  remaining error is ~1e-14 of min(m, mc)), or when |F - Phi| is at the rounding level
-  of F itself (4e-15 Phi: near Phi = 8 no step can do better). One evaluation of F
-  suffices for most points (the Newton step from the table's start is below 1e-7).
+  its midpoint. The first step uses the table's slope; a point is done after it if the
+  step is below 1e-8 of min(m, mc) and Phi < 7.9 (remaining error < 3e-7 x 1e-8 from
+  the slope plus ~1e-16 from the quadratic term). Later steps use the exact slope and
+  stop below 1e-7 of min(m, mc) (Newton converges quadratically: dF/dm > 0, d2F/dm2
+  bounded up to a mild log at m = 1, so ~1e-14 remains). A point is also done when
+  |F - Phi| is at the rounding level of F itself (4e-15 Phi: near Phi = 8 no step can do
+  better). In practice one evaluation of F settles all points below Phi = 7.9, and the
+  few above take one or two more (only those points are carried on).
 
 tau0 = pi/2 - 2 arcsin(sqrt m) for m <= 1/2, and 2 arcsin(sqrt mc) - pi/2 above, each
 exact to rounding. Near Phi = 8 the problem itself is ill-conditioned: F(m) has absolute
@@ -167,18 +170,15 @@ def solve(phi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     Raises RuntimeError if some point has not converged after MAX_ITER steps (never
     observed: it would be a bug, not an answer)."""
     phi = np.asarray(phi, dtype=float)
-    m_out = np.full(phi.shape, np.nan)
-    mc_out = np.full(phi.shape, np.nan)
     opens = phi < PHI_MAX
-    if not opens.any():
-        return m_out, mc_out
-    p = phi[opens]
+    every = bool(opens.all())
+    if not every and not opens.any():
+        return np.full(phi.shape, np.nan), np.full(phi.shape, np.nan)
+    p = phi.reshape(-1) if every else phi[opens]
     m, mc, d = _start(p)
     trusted = p < _TRUSTED
-    lo, lo_c = np.zeros_like(p), np.ones_like(p)  # F(lo) <= p
-    hi, hi_c = np.ones_like(p), np.zeros_like(p)  # F(hi) >= p
-    m_done, mc_done = np.empty_like(p), np.empty_like(p)
-    active = np.arange(p.size)  # points still iterating; the arrays above are theirs
+    lo, lo_c, hi, hi_c = 0.0, 1.0, 1.0, 0.0  # the bracket: F(lo) <= p <= F(hi)
+    active = None  # indices of the points still iterating, once some are done
     for it in range(MAX_ITER):
         F = impulse_factor(m, mc)
         f = F - p
@@ -193,20 +193,28 @@ def solve(phi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
             small = (np.abs(step) <= _TOL_FIRST * np.minimum(m, mc)) & trusted
         done = inside & (small | (np.abs(f) <= _NOISE * p))
         if done.all():
-            m_done[active], mc_done[active] = m_new, mc_new
+            if active is None:
+                m_res, mc_res = m_new, mc_new
+            else:
+                m_res[active], mc_res[active] = m_new, mc_new
             break
+        if active is None:
+            m_res, mc_res, active = np.empty_like(p), np.empty_like(p), np.arange(p.size)
         below, above = f <= 0.0, f >= 0.0
         lo, lo_c = np.where(below, m, lo), np.where(below, mc, lo_c)
         hi, hi_c = np.where(above, m, hi), np.where(above, mc, hi_c)
         m = np.where(inside, m_new, 0.5 * (lo + hi))
         mc = np.where(inside, mc_new, 0.5 * (lo_c + hi_c))
-        m_done[active[done]], mc_done[active[done]] = m[done], mc[done]
+        m_res[active[done]], mc_res[active[done]] = m[done], mc[done]
         keep = ~done
         active, p, m, mc = active[keep], p[keep], m[keep], mc[keep]
         lo, lo_c, hi, hi_c = lo[keep], lo_c[keep], hi[keep], hi_c[keep]
     else:
         raise RuntimeError(f"tau0: the balance F(tau0) = Phi did not converge in {MAX_ITER} steps")
-    m_out[opens], mc_out[opens] = m_done, mc_done
+    if every:
+        return m_res.reshape(phi.shape), mc_res.reshape(phi.shape)
+    m_out, mc_out = np.full(phi.shape, np.nan), np.full(phi.shape, np.nan)
+    m_out[opens], mc_out[opens] = m_res, mc_res
     return m_out, mc_out
 
 
