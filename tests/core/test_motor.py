@@ -72,10 +72,15 @@ def test_H_keeps_its_relative_accuracy_at_the_ends(rod: Rod) -> None:
             assert float(rod.H(x0)) == pytest.approx(float(exact), rel=1e-13)
 
 
-def test_psi_is_one_where_the_paper_says(motor: Motor) -> None:
+def test_psi_is_one_where_the_paper_says_and_the_thrust_is_largest_there(motor: Motor) -> None:
     tan_theta0 = MU * (2 - NU) / (2 * (1 - NU))
     x1 = 2 * L / math.pi * math.atan(NU_ROD * math.pi * DELTA * tan_theta0 / (4 * L))
     assert motor.psi(-x1) == pytest.approx(1.0, rel=1e-14)
+    # eq 41 is 1 at psi = 1 whatever tau0: the stall thrust is mu N there, its maximum
+    assert motor.stall_thrust(-x1) == pytest.approx(MU * N, rel=1e-13)
+    assert motor.stall_thrust(x1) == pytest.approx(-MU * N, rel=1e-13)
+    x0 = along(4001)
+    assert np.nanmax(np.abs(motor.stall_thrust(x0))) <= MU * N * (1 + 1e-15)
 
 
 # ---- tau0 from the mean-force balance (eq 10) ------------------------------------------
