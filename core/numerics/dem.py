@@ -85,13 +85,15 @@ MODELS: dict[str, int] = {
 @njit(cache=True)
 def lammps(psi, tau0, tau, force_history, rescale, constant_k):
     """LAMMPS granular tangential models (mindlin, mindlin/force, mindlin_rescale,
-    mindlin_rescale/force, linear_history) over the times ``tau``; returns F / T0."""
+    mindlin_rescale/force, linear_history) over the times ``tau``; returns F / T0 and the
+    Coulomb limit mu P / T0 the rule used at each time."""
     s0 = math.sin(tau0)
     kfac = 1.5 * psi
     k_const = kfac * math.sqrt(1.0 - s0)
     hist = 0.0
     a_prev = 0.0  # history[3]
     out = np.zeros(tau.size)
+    lim = np.zeros(tau.size)
     for k in range(1, tau.size):
         delta = max(math.sin(tau[k]) - s0, 0.0)
         if delta <= 0.0:  # out of contact: the codes delete the history
@@ -100,6 +102,7 @@ def lammps(psi, tau0, tau, force_history, rescale, constant_k):
         a = math.sqrt(delta)  # a / a* up to the constant sqrt(1 - s0), absorbed in kfac
         k_scaled = k_const if constant_k else kfac * a
         fscrit = delta * a  # mu P / T0 = delta^{3/2}
+        lim[k] = fscrit
         if rescale and a < a_prev:
             hist *= a / a_prev
         dxi = math.cos(0.5 * (tau[k] + tau[k - 1])) * (tau[k] - tau[k - 1])
@@ -115,16 +118,18 @@ def lammps(psi, tau0, tau, force_history, rescale, constant_k):
             fs *= fscrit / magfs
             hist = fs if force_history else fs / k_scaled
         out[k] = fs
-    return out
+    return out, lim
 
 
 @njit(cache=True)
 def liggghts(psi, tau0, tau):
-    """LIGGGHTS-PUBLIC tangential_model_history (Hertz kt) over ``tau``; returns F / T0."""
+    """LIGGGHTS-PUBLIC tangential_model_history (Hertz kt) over ``tau``; returns F / T0
+    and mu P / T0."""
     s0 = math.sin(tau0)
     kfac = 1.5 * psi
     shear = 0.0
     out = np.zeros(tau.size)
+    lim = np.zeros(tau.size)
     for k in range(1, tau.size):
         deltan = max(math.sin(tau[k]) - s0, 0.0)
         if deltan <= 0.0:  # surfacesClose: shear = 0
@@ -137,6 +142,7 @@ def liggghts(psi, tau0, tau):
         ft = -(kt * shear)
         ft_shear = kt * shrmag
         ft_friction = deltan * a  # xmu |Fn|
+        lim[k] = ft_friction
         if ft_shear > ft_friction:
             if shrmag != 0.0:
                 ft *= ft_friction / ft_shear
@@ -144,16 +150,18 @@ def liggghts(psi, tau0, tau):
             else:
                 ft = 0.0
         out[k] = ft
-    return out
+    return out, lim
 
 
 @njit(cache=True)
 def direnzo(psi, tau0, tau):
-    """Di Renzo & Di Maio (2005): F = (2/3) k_t a xi, capped; returns F / T0."""
+    """Di Renzo & Di Maio (2005): F = (2/3) k_t a xi, capped; returns F / T0 and
+    mu P / T0."""
     s0 = math.sin(tau0)
     kfac = psi  # (2/3) (3/2) psi
     xi = 0.0
     out = np.zeros(tau.size)
+    lim = np.zeros(tau.size)
     for k in range(1, tau.size):
         delta = max(math.sin(tau[k]) - s0, 0.0)
         if delta <= 0.0:
@@ -164,16 +172,17 @@ def direnzo(psi, tau0, tau):
         xi += math.cos(0.5 * (tau[k] + tau[k - 1])) * (tau[k] - tau[k - 1])
         force = kt * xi
         cap = delta * a
+        lim[k] = cap
         if abs(force) > cap:
             force = math.copysign(cap, force)
             xi = force / kt
         out[k] = force
-    return out
+    return out, lim
 
 
 @njit(cache=True)
 def forces(model, psi, tau0, tau):
-    """F / T0 of ``model`` (a code of ``MODELS``) over the times ``tau``."""
+    """(F / T0, mu P / T0) of ``model`` (a code of ``MODELS``) over the times ``tau``."""
     if model == LIGGGHTS:
         return liggghts(psi, tau0, tau)
     if model == DIRENZO:
@@ -188,16 +197,12 @@ def contact(model, psi, tau0, steps):
     """One contact from (psi, tau0) with ``steps`` equal time steps over
     [tau0, pi - tau0]: returns (tau, F / T0, impulse ratio by the trapezoid rule)."""
     tau = np.linspace(tau0, np.pi - tau0, steps + 1)
-    F = forces(model, psi, tau0, tau)
-    s0 = math.sin(tau0)
-    f_sum = 0.0
-    p_sum = 0.0
-    for k in range(1, steps):  # equal steps; F and P vanish at both ends
+    F, P = forces(model, psi, tau0, tau)
+    f_sum = 0.5 * (F[0] + F[steps])  # equal steps: the trapezoid's dtau cancels
+    p_sum = 0.5 * (P[0] + P[steps])
+    for k in range(1, steps):
         f_sum += F[k]
-        p_sum += max(math.sin(tau[k]) - s0, 0.0) ** 1.5
-    f_sum += 0.5 * (F[0] + F[steps])
-    p_sum += 0.5 * (max(math.sin(tau[0]) - s0, 0.0) ** 1.5
-                    + max(math.sin(tau[steps]) - s0, 0.0) ** 1.5)
+        p_sum += P[k]
     return tau, F, f_sum / p_sum
 
 

@@ -14,6 +14,7 @@ traction solution. The ratio is T_imp / (mu P_imp) = int T / T0 dtau / int P / P
 from __future__ import annotations
 
 import warnings
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import NDArray
@@ -65,11 +66,17 @@ def solve_quad(contact: ContactLike, resolution: int) -> tuple:
     return tau, np.asarray(c.tangential_force(tau), dtype=float), None, t_imp / p_imp
 
 
+@lru_cache(maxsize=64)
+def _legendre(n: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Nodes and weights on [-1, 1], computed once per n."""
+    return roots_legendre(n)
+
+
 def gauss_legendre_nodes(start: float, end: float, n: int
                          ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Nodes and weights of the n-point Gauss-Legendre rule on [start, end]
-    (scipy.special.roots_legendre: O(n), unlike numpy's eigenvalue-based leggauss)."""
-    x, w = roots_legendre(n)
+    (scipy.special.roots_legendre, O(n), computed once per n and cached)."""
+    x, w = _legendre(n)
     half = 0.5 * (end - start)
     return start + half * (x + 1.0), half * w
 
