@@ -86,7 +86,7 @@ def load_factor(
     take for a mean contact force N (eq 10 with P_imp = 2 pi N / omega); inf where H = 0.
     N in newtons, R and H in m, G in Pa."""
     H = np.asarray(H, dtype=float)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore"):  # H -> 0: Phi = inf, never opens
         return (9.0 * math.pi * (1.0 - nu) * preload / (4.0 * G * math.sqrt(R))) / (H * np.sqrt(H))
 
 

@@ -130,7 +130,7 @@ class Motor:
         one root solve."""
         x = self.rod.check_x0(x0)
         u0, H = self.rod.drive(x)
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             tan_theta = np.abs(u0) / H
         psi = self._psi(u0, H)
         phi = self._load_factor(H)
@@ -167,7 +167,7 @@ class Motor:
 
     # ---- helpers -------------------------------------------------------------------
     def _psi(self, u0: NDArray[np.float64], H: NDArray[np.float64]) -> NDArray[np.float64]:
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             return np.abs(u0) / H / self.tan_theta0
 
     def _load_factor(self, H: NDArray[np.float64]) -> NDArray[np.float64]:

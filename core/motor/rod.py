@@ -121,5 +121,5 @@ class Rod:
         """tan theta(x0) = |u0| / H = (4L / (|nu_rod| pi delta)) |tan(pi x0 / 2L)|, the
         tangent of the angle of incidence at x0 (dimensionless; inf for nu_rod = 0)."""
         u0, H = self.drive(self.check_x0(x0))
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             return np.abs(u0) / H

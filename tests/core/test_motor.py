@@ -10,6 +10,8 @@ import math
 import mpmath as mp
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.optimize import brentq
 
 from core import Contact
@@ -270,6 +272,36 @@ def test_si_scaling_of_the_stall_thrust(rod: Rod) -> None:
     m2 = Motor(rod, R=R, G=2 * G, nu=NU, mu=MU, preload=2 * N)
     x0 = along(61)
     np.testing.assert_allclose(m2.stall_thrust(x0), 2 * m1.stall_thrust(x0), rtol=1e-14)
+
+
+def _log(lo: float, hi: float) -> st.SearchStrategy[float]:
+    return st.floats(math.log10(lo), math.log10(hi)).map(lambda e: 10.0**e)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    L_=_log(1e-3, 1.0), delta_ratio=_log(1e-3, 0.5), A=_log(1e-8, 1e-4),
+    nu_rod=st.floats(-0.99, 0.5), R_=_log(1e-4, 1.0), G_=_log(1e8, 1e12),
+    nu=st.floats(-0.99, 0.5), mu=_log(1e-3, 3.0), N_=_log(1e-8, 1e3),
+)
+def test_properties_over_random_motors(L_: float, delta_ratio: float, A: float,
+                                       nu_rod: float, R_: float, G_: float, nu: float,
+                                       mu: float, N_: float) -> None:
+    """Any motor: the thrust is odd in x0, within mu N, nan exactly where the contact never
+    opens, and tau0 satisfies the balance of eq 10 there."""
+    rod = Rod(half_length=L_, thickness=delta_ratio * L_, nu_rod=nu_rod, amplitude=A,
+              frequency=FREQ)
+    motor = Motor(rod, R=R_, G=G_, nu=nu, mu=mu, preload=N_)
+    half = L_ * np.linspace(0.0, 1.0 - 1e-6, 101)
+    x0 = np.concatenate([-half[:0:-1], half])
+    p = motor.profile(x0)
+    np.testing.assert_array_equal(p.stall_thrust, -p.stall_thrust[::-1])
+    np.testing.assert_array_equal(np.isnan(p.stall_thrust), p.load_factor >= PHI_MAX)
+    assert np.all(np.abs(p.stall_thrust[p.opens]) <= mu * N_ * (1 + 1e-15))
+    ok = p.opens
+    np.testing.assert_allclose(impulse_factor(p.m0[ok], 1 - p.m0[ok]), p.load_factor[ok],
+                               rtol=3e-14)
+    assert np.all((p.tau0[ok] > -math.pi / 2) & (p.tau0[ok] <= math.pi / 2))
 
 
 # ---- bad input ---------------------------------------------------------------------------
