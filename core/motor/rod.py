@@ -31,10 +31,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from core.validation import Interval
+from core.validation import DOMAIN, Interval
 
+#: Lengths, amplitude, frequency and preload: any positive finite number.
 POSITIVE = Interval(0.0, None, lo_open=True)
-POISSON = Interval(-1.0, 0.5, lo_open=True)
+#: The rod's Poisson ratio has the range of core's nu, (-1, 0.5].
+POISSON = DOMAIN["nu"]
 
 
 @dataclass(frozen=True)
