@@ -53,8 +53,8 @@ _SOLVERS: dict[str, Callable[..., tuple]] = {
 }
 
 INTERACTIVE_RESOLUTION: dict[str, int] = {
-    "mdr": 150,
-    "annulus": 14,
+    "mdr": 400,
+    "annulus": 32,
     "lammps_mindlin": 2000,
     "lammps_mindlin_force": 2000,
     "lammps_mindlin_rescale": 2000,
@@ -63,10 +63,11 @@ INTERACTIVE_RESOLUTION: dict[str, int] = {
     "liggghts_history": 2000,
     "direnzo": 2000,
     "quad": 8,
-    "gauss_legendre": 64,
+    "gauss_legendre": 256,
 }
-"""Resolution per method for the app's live overlay: a few ms per solve (compiled),
-quad and Gauss-Legendre tens of ms."""
+"""Resolution per method for the app's live overlay: at most a few ms per solve
+(compiled kernels; quad ~50 ms) over psi in [0.3, 1e4] x tau0 in [-1.4, 1.569], and a
+few hundred time points per curve (the DEM rules 2000)."""
 
 STEPPED = ("mdr", "annulus")
 """Methods whose time steps can be chosen apart from their resolution (``steps=``)."""
