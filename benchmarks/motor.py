@@ -71,14 +71,15 @@ def main() -> None:
             args.repeat,
         )
         sample = phi[opens][:: max(1, opens.sum() // 50)]
-        t_brent = timeit.timeit(lambda s=sample: brentq_per_point(s), number=1) / sample.size
+        t_brent = min(timeit.repeat(lambda s=sample: brentq_per_point(s), number=1,
+                                    repeat=5)) / sample.size
         per_point = t_brent * opens.sum()
         print(f"{label:44s} {t['sin'] * 1e6:6.1f}us {t['curve'] * 1e6:7.1f}us "
               f"{t['curve'] / t['sin']:6.1f} {t['solve'] / t['sin']:6.1f} "
               f"{(t['curve'] - t['solve']) / t['sin']:6.1f} {per_point / t['sin']:10.0f}")
     print("ratio: curve / np.sin; solve: the vectorised root solve alone / np.sin; rest:"
           " (curve - solve) / np.sin (target <= 20);\nbrentq/pt: one scipy brentq per"
-          " opening point on core's F, extrapolated from 50 points, / np.sin.")
+          " opening point on core's F, extrapolated from 50 points (best of 5), / np.sin.")
 
 
 if __name__ == "__main__":
