@@ -88,7 +88,7 @@ class Interval:
         where = "" if self.lo is None and self.hi is None else f" in {self.describe()}"
         if v is None:
             raise ValueError(f"{name} must be a real number{where}, got {shown(value)}")
-        if math.isnan(v) or (math.isinf(v) and isinstance(value, float | np.floating)):
+        if isinstance(value, float | np.floating) and not np.isfinite(value):
             raise ValueError(f"{name} must be a finite number{where}, got {shown(value)}")
         raise ValueError(f"{name} = {shown(value)} is outside the allowed range"
                          f" {self.describe()}")

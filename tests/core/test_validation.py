@@ -171,6 +171,8 @@ def test_check_param_returns_floats_and_short_messages() -> None:
         ("psi", -1, "psi = -1 is outside the allowed range [0, 1e+12]"),
         ("psi", "abc", "psi must be a real number in [0, 1e+12], got 'abc'"),
         ("psi", math.inf, "psi must be a finite number in [0, 1e+12], got inf"),
+        ("psi", np.longdouble("1e400"), "psi = 1e+400 is outside the allowed range [0, 1e+12]"),
+        ("nu", np.float32("nan"), "nu must be a finite number in (-1, 0.5], got nan"),
         ("tau0", -math.pi / 2,
          "tau0 = -1.5707963267948966 is outside the allowed range (-1.5708, 1.5708)"),
         ("mu", 0.1 + 1e3, "mu = 1000.1 is outside the allowed range (0, 1000]"),
