@@ -5,6 +5,7 @@ scales."""
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import mpmath as mp
@@ -12,6 +13,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from scipy.integrate import quad
 from scipy.optimize import brentq
 
 from core import Contact
@@ -213,6 +215,24 @@ def test_stall_thrust_is_mu_N_times_core_impulse_ratio(motor: Motor) -> None:
         assert abs(f) == pytest.approx(expected, rel=1e-12)
         assert c.scales.tangential_impulse / c.scales.period == pytest.approx(abs(f), rel=1e-12)
         assert math.copysign(1.0, f) == (1.0 if x < 0 else -1.0)
+
+
+@pytest.mark.parametrize("x", [-0.017, -0.008, -2e-4, -1e-6, 0.005])
+def test_mean_forces_by_quadrature_of_core_T_and_P(motor: Motor, x: float) -> None:
+    """Independent of eqs 10, 41: integrate core's P(tau) and T(tau) (eqs 9, 38, 39) over
+    one contact and divide by the period. The mean normal force is the preload, the mean
+    tangential force the stall thrust."""
+    c = motor.contact(x)
+    s = c.scales
+    cuts = [c.tau0, math.pi / 2] + ([c.tau1] if c.psi > 1 else []) + [c.tau_end]
+
+    def mean(f: object) -> float:
+        return sum(quad(lambda t: float(f(t)), a, b, epsabs=0, epsrel=1e-13, limit=200)[0]
+                   for a, b in itertools.pairwise(cuts)) / (2 * math.pi)
+
+    assert s.P0 * mean(c.normal_force) == pytest.approx(N, rel=1e-11)
+    F_t = float(motor.stall_thrust(x))
+    assert s.T0 * mean(c.tangential_force) == pytest.approx(abs(F_t), rel=1e-10)
 
 
 def test_small_angles_near_the_centre_give_mu_N_psi(motor: Motor) -> None:
