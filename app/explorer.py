@@ -38,7 +38,7 @@ from app.scenes import (
     Scene,
     TractionScene,
 )
-from app.state import PRESETS, ExplorerState, parse_query
+from app.state import PRESETS, ExplorerState, parse_query, parse_tau, parse_value
 from app.widgets import ExactSlider
 from core import Contact
 
@@ -294,25 +294,21 @@ class Explorer:
 
     def _build_widgets(self) -> None:
         s = self.state
-        self.psi_slider = ExactSlider(
-            label="ψ = tan θ / tan θ₀", value=s.psi, start=0.05, end=30.0, step=0.01,
-            fixed_start=1e-6, fixed_end=1e6, format="0[.]000")
-        self.tau0_slider = ExactSlider(
-            label="τ₀ (rad): contact starts", value=s.tau0, start=-1.5, end=1.5,
-            step=0.005, fixed_start=-1.5, fixed_end=1.5, format="0[.]0000")
-        self.mu_slider = ExactSlider(
-            label="μ friction", value=s.mu, start=0.01, end=1.0, step=0.01,
-            fixed_start=1e-3, fixed_end=2.0, format="0[.]000")
-        self.nu_slider = ExactSlider(
-            label="ν Poisson ratio", value=s.nu, start=0.0, end=0.49, step=0.01,
-            fixed_start=0.0, fixed_end=0.499, format="0[.]000")
-        for name in ("psi", "tau0", "mu", "nu"):
-            self._bind(getattr(self, f"{name}_slider"), name)
+        for name, label, start, end, step in (
+                ("psi", "ψ = tan θ / tan θ₀", 0.05, 30.0, 0.01),
+                ("tau0", "τ₀ (rad): contact starts", -1.5, 1.5, 0.005),
+                ("mu", "μ friction", 0.01, 1.0, 0.01),
+                ("nu", "ν Poisson ratio", 0.0, 0.49, 0.01)):
+            widget = ExactSlider(label=label, value=getattr(s, name), start=start, end=end,
+                                 step=step, parse=partial(parse_value, name), name=name)
+            self._bind(widget, name)
+            setattr(self, f"{name}_slider", widget)
         # not bound both ways: while playing it is refreshed only every
         # SLOW_UPDATE_S, to spare the browser a widget re-render per frame
         self.tau_slider = ExactSlider(
             label="τ = ωt (rad): time", value=s.tau, start=self.contact.tau0,
-            end=self.contact.tau_end, step=0.002, format="0[.]0000")
+            end=self.contact.tau_end, step=0.002,
+            parse=lambda text: parse_tau(text, self.contact), name="tau")
         self.tau_slider.param.watch(lambda e: setattr(s, "tau", e.new), "value")
         self.play_button = pn.widgets.Button(label="▶ Play", color="success", width=110)
         self.play_button.on_click(lambda _: setattr(s, "playing", not s.playing))
@@ -545,7 +541,14 @@ class Explorer:
         page = self.view().servable()
         if pn.state.curdoc is not None:
             browser.install(pn.state.curdoc)
+            pn.state.on_session_destroyed(self.close)
         return page
+
+    def close(self, session_context=None) -> None:
+        """The session ended: stop the animation's tick and the Methods runs."""
+        if self._callback is not None:
+            self._callback.stop()
+        self.methods.close()
 
 
 def build_explorer(query: dict | None = None) -> Explorer:

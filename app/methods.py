@@ -1,9 +1,15 @@
 """Methods scene: numerical methods of `core.numerics` against the closed form.
 
 T(tau) of the chosen methods is overlaid on core's T(tau), each with its live error.
-Solving runs in a worker thread (a method may take a few hundred ms) with a progress
-bar, so the sliders never wait for it; a newer request makes older results stale.
-The speed-accuracy chart and the stability map come from `benchmarks/results/*.csv`.
+The scene is a collapsed card: its plots and charts are built when it is first opened,
+and nothing is computed while it is closed.
+
+Solving runs on one worker thread shared by every session of the server process (a
+method may take a few hundred ms), with a progress bar, so sliders never wait for it.
+Work is bounded: a session has at most one request waiting (a newer one replaces it),
+at most `MAX_QUEUED` requests wait in the whole process (beyond that the scene says the
+server is busy), and a session's requests are dropped when it ends.  The speed-accuracy
+chart and the stability map come from `benchmarks/results/*.csv`, read once per process.
 If `core.numerics` (or a method) is missing the scene shows a note instead.
 """
 
@@ -12,8 +18,8 @@ from __future__ import annotations
 import csv
 import math
 import threading
-from concurrent.futures import ThreadPoolExecutor
-from functools import partial
+from concurrent.futures import Future, ThreadPoolExecutor
+from functools import cache, partial
 from pathlib import Path
 
 import numpy as np
@@ -36,6 +42,29 @@ PALETTE = ("#D55E00", "#0072B2", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#F
            "#000000", "#999999", "#882255")
 
 
+#: Requests waiting for the shared worker, over all sessions of this process.
+MAX_QUEUED = 16
+
+
+class SharedWorker:
+    """One worker thread for the Methods runs of every session, with a bounded queue."""
+
+    def __init__(self, max_queued: int = MAX_QUEUED) -> None:
+        self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="methods")
+        self._slots = threading.BoundedSemaphore(max_queued)
+
+    def submit(self, job) -> Future | None:
+        """Run `job` on the worker; None (nothing queued) when the queue is full."""
+        if not self._slots.acquire(blocking=False):
+            return None
+        future = self._pool.submit(job)
+        future.add_done_callback(lambda _: self._slots.release())
+        return future
+
+
+WORKER = SharedWorker()
+
+
 def available_methods() -> dict[str, str]:
     """Method name -> description of the methods `core.numerics` offers (may be empty)."""
     if numerics is None or not hasattr(numerics, "solve"):
@@ -43,8 +72,12 @@ def available_methods() -> dict[str, str]:
     return dict(getattr(numerics, "METHODS", {}))
 
 
+@cache
 def read_csv(path: Path) -> dict[str, np.ndarray] | None:
-    """Columns of a CSV file (numeric where possible), or None if it is absent."""
+    """Columns of a CSV file (numeric where possible), or None if it is absent.
+
+    Read once per process (the files ship with the app); callers must not modify the
+    arrays."""
     if not path.exists():
         return None
     with path.open(newline="") as f:
@@ -71,8 +104,9 @@ class MethodsScene:
         self.exact = ColumnDataSource({"tau": [], "T": []}, name="methods_exact")
         self._generation = 0
         self._lock = threading.Lock()
-        self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="methods")
+        self._pending: Future | None = None
         self._doc = None
+        self._built = False
         self._contact: Contact | None = None
         self.results: list = []
 
@@ -108,9 +142,21 @@ class MethodsScene:
         return not self.card.collapsed
 
     def _on_collapsed(self, event) -> None:
-        if not event.new and self._contact is not None:
+        if event.new:
+            return
+        if not self._built:
+            self._built = True
+            self.card.objects = self._body()
+        if self._contact is not None:
             with hold():
                 self.update_contact(self._contact)
+
+    def close(self) -> None:
+        """The session ended: drop its waiting request and make a running one stale."""
+        with self._lock:
+            self._generation += 1
+            if self._pending is not None:
+                self._pending.cancel()
 
     # ------------------------------------------------------------- live runs
 
@@ -146,10 +192,16 @@ class MethodsScene:
         self.progress.param.update(active=True, visible=True)
         self.status.object = f"computing {', '.join(names) or 'nothing'}…"
         job = partial(self._solve_all, generation, self._contact, names)
-        if self._doc is not None and self._doc.session_context is not None:
-            self._pool.submit(job)
-        else:
+        if self._doc is None or self._doc.session_context is None:
             job()
+            return
+        with self._lock:
+            if self._pending is not None:
+                self._pending.cancel()  # replaced by this newer request
+            self._pending = WORKER.submit(job)
+        if self._pending is None:
+            self._show(generation, self._contact, [],
+                       ["the server is busy with other sessions' runs: try again shortly"])
 
     def _solve_all(self, generation: int, c: Contact, names: list[str]) -> None:
         results, errors = [], []
@@ -249,8 +301,12 @@ class MethodsScene:
         _style(fig)
         return fig
 
-    def view(self) -> pn.viewable.Viewable:
-        """The scene: controls, the overlay and its error table, and the charts."""
+    def view(self) -> pn.Card:
+        """The scene: a collapsed card, filled (`_body`) when first opened."""
+        return self.card
+
+    def _body(self) -> list:
+        """Controls, the overlay and its error table, and the benchmark charts."""
         if not self.methods:
             body = [pn.pane.Alert("The numerical methods (`core.numerics`) are not available "
                                   "in this installation; the closed-form scenes above are "
@@ -266,5 +322,4 @@ class MethodsScene:
             body += [pn.pane.Bokeh(f, sizing_mode="stretch_width") for f in charts]
         else:
             body.append(pn.pane.Markdown("_No benchmark results in benchmarks/results._"))
-        self.card.objects = body
-        return self.card
+        return body

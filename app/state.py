@@ -14,44 +14,48 @@ from dataclasses import dataclass
 
 import param
 
-from core import MATERIALS, Contact
+from core import DOMAIN, MATERIALS, Contact
+from core.validation import Interval
 
 SQRT2_1 = math.sqrt(2.0) + 1.0  # psi of the paper's Figs. 4, 6 and 9 (tau1 = 3 pi / 4)
 PI = math.pi
 TAU0 = PI / 6  # all the paper's figures: H = 2 h
 
 
-@dataclass(frozen=True)
-class Limits:
-    """Accepted range of one URL/query parameter (inclusive unless marked open)."""
-
-    lo: float
-    hi: float
-    lo_open: bool = False
-    hi_open: bool = False
-
-    def contains(self, x: float) -> bool:
-        """True when x lies in the range."""
-        above = x > self.lo if self.lo_open else x >= self.lo
-        below = x < self.hi if self.hi_open else x <= self.hi
-        return above and below
-
-    def describe(self) -> str:
-        """The range in interval notation, e.g. '(0, 1e+06]'."""
-        left = "(" if self.lo_open else "["
-        right = ")" if self.hi_open else "]"
-        return f"{left}{self.lo:g}, {self.hi:g}{right}"
+#: The app's own settings, beside core's parameters (whose ranges are core.DOMAIN):
+#: the animation speed, in contacts per 4 s.
+APP_DOMAIN: dict[str, Interval] = {"speed": Interval(0.05, 10.0)}
 
 
-#: Limits of every numeric query parameter.  tau is checked separately against
-#: the contact interval [tau0, pi - tau0] implied by tau0.
-LIMITS: dict[str, Limits] = {
-    "psi": Limits(0.0, 1e6, lo_open=True),
-    "tau0": Limits(-1.5, 1.5),
-    "mu": Limits(0.0, 2.0, lo_open=True),
-    "nu": Limits(0.0, 0.5, hi_open=True),
-    "speed": Limits(0.05, 10.0),
-}
+def domain(name: str) -> Interval:
+    """The allowed range of parameter `name`: core's, or the app's own for settings."""
+    return APP_DOMAIN[name] if name in APP_DOMAIN else DOMAIN[name]
+
+
+def bounds(name: str) -> dict:
+    """`param.Number` keyword arguments (bounds, inclusive_bounds) of `domain(name)`."""
+    d = domain(name)
+    return {"bounds": (d.lo, d.hi), "inclusive_bounds": (not d.lo_open, not d.hi_open)}
+
+
+def parse_value(name: str, raw: str) -> float:
+    """The number a typed or URL text `raw` gives parameter `name`, checked against its
+    domain; ValueError with the message to show (the same for the URL and the boxes)."""
+    try:
+        value: object = float(raw)
+    except ValueError:
+        value = raw
+    return domain(name).check(name, value)
+
+
+def parse_tau(raw: str, c: Contact) -> float:
+    """A time tau (rad) inside the contact of `c`, [tau0, pi - tau0]; ValueError else."""
+    tau = parse_value("tau", raw)
+    if not c.tau0 <= tau <= c.tau_end:
+        raise ValueError(f"tau = {raw} is outside the contact [{c.tau0:.4g}, {c.tau_end:.4g}]"
+                         f" (tau0 = {c.tau0:.4g})")
+    return tau
+
 
 #: Query parameters written to / read from the URL, in this order.
 QUERY_KEYS = ("psi", "tau0", "mu", "nu", "tau", "log_psi", "preset")
@@ -92,25 +96,25 @@ DEFAULT_PRESET = "fig6e"
 class ExplorerState(param.Parameterized):
     """Everything the user sets; the view watches it and asks `core` for numbers."""
 
-    psi = param.Number(default=SQRT2_1, bounds=(1e-6, 1e6), doc="psi = tan(theta) / tan(theta0)")
-    tau0 = param.Number(default=math.pi / 6, bounds=(-1.5, 1.5), doc="start of contact (rad)")
-    mu = param.Number(default=0.2, bounds=(1e-3, 2.0), doc="friction coefficient")
-    nu = param.Number(default=0.3, bounds=(0.0, 0.499), doc="Poisson ratio")
+    psi = param.Number(default=SQRT2_1, **bounds("psi"), doc="psi = tan(theta) / tan(theta0)")
+    tau0 = param.Number(default=math.pi / 6, **bounds("tau0"), doc="start of contact (rad)")
+    mu = param.Number(default=0.2, **bounds("mu"), doc="friction coefficient")
+    nu = param.Number(default=0.3, **bounds("nu"), doc="Poisson ratio")
     tau = param.Number(default=17 * math.pi / 24, doc="current time omega t (rad)")
     log_psi = param.Boolean(default=False, doc="log psi axis on the impulse curve")
     playing = param.Boolean(default=False, doc="animation running")
-    speed = param.Number(default=1.0, bounds=(0.05, 10.0), doc="contacts per 4 s")
+    speed = param.Number(default=1.0, **bounds("speed"), doc="contacts per 4 s")
     preset = param.String(default=DEFAULT_PRESET,
                           doc="name of the last preset loaded, '' once edited")
 
     physical = param.Boolean(default=False, doc="define the contact by SI inputs")
     material = param.Selector(default="custom", objects=["custom", *MATERIALS])
-    R = param.Number(default=0.01, bounds=(1e-9, None), doc="sphere radius (m)")
-    G = param.Number(default=79e9, bounds=(1.0, None), doc="shear modulus (Pa)")
-    H = param.Number(default=2e-6, bounds=(1e-15, None), doc="normal amplitude (m)")
-    u0 = param.Number(default=1e-6, bounds=(0.0, None), doc="tangential amplitude (m)")
-    h = param.Number(default=1e-6, bounds=(None, None), doc="gap at t = 0 (m)")
-    omega = param.Number(default=2 * math.pi * 40e3, bounds=(1e-9, None), doc="rad/s")
+    R = param.Number(default=0.01, **bounds("R"), doc="sphere radius (m)")
+    G = param.Number(default=79e9, **bounds("G"), doc="shear modulus (Pa)")
+    H = param.Number(default=2e-6, **bounds("H"), doc="normal amplitude (m)")
+    u0 = param.Number(default=1e-6, **bounds("u0"), doc="tangential amplitude (m)")
+    h = param.Number(default=1e-6, **bounds("h"), doc="gap at t = 0 (m), |h| < H")
+    omega = param.Number(default=2 * math.pi * 40e3, **bounds("omega"), doc="rad/s")
 
     def contact(self) -> Contact:
         """The `core.Contact` the current parameters define."""
@@ -145,19 +149,6 @@ class ExplorerState(param.Parameterized):
         return q
 
 
-def _number(key: str, raw: str) -> tuple[float | None, str | None]:
-    try:
-        x = float(raw)
-    except ValueError:
-        return None, f"{key}={raw!r} is not a number"
-    if not math.isfinite(x):
-        return None, f"{key}={raw!r} is not a finite number"
-    lim = LIMITS.get(key)
-    if lim is not None and not lim.contains(x):
-        return None, f"{key}={raw} is out of range {lim.describe()}"
-    return x, None
-
-
 def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str]]:
     """Validate URL query values.
 
@@ -189,15 +180,15 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
             values.update(psi=p.psi, tau0=p.tau0, mu=0.2, nu=0.3, tau=p.tau, log_psi=p.log_psi,
                           preset=name)
         else:
-            messages.append(f"preset={name!r} is unknown (known: {', '.join(PRESETS)})")
+            messages.append(f"preset = {name!r} is unknown (known: {', '.join(PRESETS)})")
 
     for key in ("psi", "tau0", "mu", "nu"):
         if key in flat:
-            x, msg = _number(key, flat[key])
-            if msg:
-                messages.append(msg)
+            try:
+                values[key] = parse_value(key, flat[key])
+            except ValueError as err:
+                messages.append(str(err))
             else:
-                values[key] = x
                 values["preset"] = ""
 
     if "log_psi" in flat:
@@ -207,18 +198,14 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
         elif raw in ("0", "false", "no", "off", ""):
             values["log_psi"] = False
         else:
-            messages.append(f"log_psi={flat['log_psi']!r} must be 0 or 1")
+            messages.append(f"log_psi = {flat['log_psi']!r} must be 0 or 1")
 
     if "tau" in flat:
-        x, msg = _number("tau", flat["tau"])
         tau0 = values.get("tau0", ExplorerState.param.tau0.default)
-        if msg:
-            messages.append(msg)
-        elif not tau0 <= x <= math.pi - tau0:
-            messages.append(f"tau={flat['tau']} is outside the contact "
-                            f"[{tau0:.4g}, {math.pi - tau0:.4g}] (tau0 = {tau0:.4g})")
-        else:
-            values["tau"] = x
+        try:
+            values["tau"] = parse_tau(flat["tau"], Contact(1.0, tau0))
+        except ValueError as err:
+            messages.append(str(err))
     elif "tau0" in values and "tau" not in values:
         values["tau"] = math.pi / 2  # inside every contact [tau0, pi - tau0]
     return values, messages

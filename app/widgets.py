@@ -1,137 +1,100 @@
-"""Sliders that reach the server at once, with a box for exact entry.
+"""A slider with a box for exact entry, and a message under the box for a bad entry.
 
-Panel holds every change coming from the browser for a fixed 50 ms (`Syncable._debounce`
-in panel/reactive.py) so that a burst of events is merged into one; a change listed in a
-widget's `_priority_changes` is scheduled on the next tick instead.  Bursts are still
-merged (events arriving while one is pending join it, and the server handles one
-message at a time), so dropping the wait costs nothing but the wait itself: half of
-the explorer's 100 ms budget from a slider move to all plots updated.  Only `value` is
-prompt: the `value_throttled` that follows every key press or release keeps its wait,
-which keeps its processing off the path of the plots' update (measured: 10-40 ms less
-per move than with both prompt).
+`ExactSlider` shows one number three ways: a slider over a teaching range, a text box
+taking any value of the parameter's whole domain, and, when the typed text is refused,
+the reason under the box (the same words as for a bad URL value: both come from one
+parse function).  A refused entry changes nothing and the box shows the last good value
+again; a good value outside the slider's range widens the range to show it.
 
-The prompt change also waits, a few turns of the event loop at most, until no message
-is being written to the browser.  Bokeh acknowledges the slider's change with a
-message written over several loop turns; a change processed in between finds the
-socket busy, and Panel then queues the update and retries every 10 ms (measured: the
-plots' update left the server 10-20 ms after it was ready).
-
-`ExactSlider` pairs such a slider with a number box.  Unlike Panel's
-EditableFloatSlider, the two are linked in the browser: the box follows the slider
-without reporting back (`SLIDER_TO_ENTRY_JS`), and a number typed in the box moves the
-slider (widening its range if needed), so the server hears of every change through
-the slider alone.  The server never writes to the box: a value it gives the slider
-(a preset, the URL) reaches the box by the same link in the browser.  The server also
-ignores values the box reports: acting on a late one would move the slider back.
+Built from Panel's public widgets only, kept in step on the server: the slider's moves
+write the box, the box's entries write the slider, both through `value`.
 """
 
 from __future__ import annotations
 
-import asyncio
-import typing as t
+import html
+from collections.abc import Callable
 
 import panel as pn
 import param
 
-try:  # Panel's own test of a socket's write lock (private: a later Panel may lack it)
-    from panel.io.document import _is_write_locked
-except ImportError:  # then the slider does not wait, and only speed is lost
-    _is_write_locked = None
-
-#: The box shows the slider's value without telling the server (it hears the slider).
-SLIDER_TO_ENTRY_JS = "entry.setv({value: cb_obj.value}, {sync: false});"
-
-#: A number typed in the box moves the slider, widening its range to show it; an
-#: emptied box shows the slider's value again.
-ENTRY_TO_SLIDER_JS = """
-const v = cb_obj.value;
-if (v == null) { cb_obj.value = slider.value; return; }
-if (v < slider.start) { slider.start = v; }
-if (v > slider.end) { slider.end = v; }
-slider.value = v;
-"""
+#: Style of the message under a box (dark red on white: 7.7:1 contrast).
+ERROR_STYLE = {"color": "#a4161a", "font-size": "0.9em", "margin-top": "0"}
 
 
-class PromptFloatSlider(pn.widgets.FloatSlider):
-    """A FloatSlider whose value changes are not debounced."""
-
-    _priority_changes: t.ClassVar[list[str]] = ["value"]
-    # a move is not "busy": flagging it costs ~1.5 ms of watchers per move, for no
-    # indicator (the template has none: it restyled the page on every message)
-    _busy__ignore: t.ClassVar[list[str]] = ["value", "value_throttled"]
-
-    async def _change_coroutine(self, doc, event_id: str | None = None) -> None:
-        await socket_free(doc)
-        await super()._change_coroutine(doc, event_id)
-
-
-async def socket_free(doc, turns: int = 50) -> None:
-    """Yield to the event loop until no message is being written to `doc`'s browsers.
-
-    Gives up after `turns` loop turns (a long write: Panel's own queue then handles it).
-    Outside a server session it returns at once.
-    """
-    if _is_write_locked is None:
-        return
-    session = getattr(doc.session_context, "_session", None)
-    connections = getattr(session, "_subscribed_connections", ())
-    for _ in range(turns):
-        if not any(_is_write_locked(c) for c in connections):
-            return
-        await asyncio.sleep(0)
+def text_html(text: str) -> str:
+    """`text` as HTML that shows exactly that text (markup in it is not interpreted)."""
+    return html.escape(text).replace("\n", "<br>")
 
 
 class ExactSlider(pn.viewable.Viewer):
-    """A slider over [start, end] and a box taking any value in [fixed_start, fixed_end].
+    """A slider over [start, end] and a box taking whatever `parse` accepts.
 
-    A value typed beyond the slider's range widens the range to show it.  `value` is
-    the one to watch or set; `disabled` greys out both.
+    `parse(text)` returns the value a typed text stands for, or raises ValueError with
+    the message to show.  `value` is the one to watch or set; `disabled` greys out both.
     """
 
     value = param.Number(default=0.0)
     start = param.Number(default=0.0)
     end = param.Number(default=1.0)
     disabled = param.Boolean(default=False)
+    error = param.String(default="", doc="why the last typed text was refused, '' if not")
 
     def __init__(self, *, label: str, value: float, start: float, end: float, step: float,
-                 fixed_start: float | None = None, fixed_end: float | None = None,
-                 format: str = "0[.]000") -> None:
+                 parse: Callable[[str], float], digits: int = 6,
+                 name: str | None = None) -> None:
         if not start < end:
             raise ValueError(f"{label}: start {start} must be below end {end}")
         super().__init__(value=value, start=min(start, value), end=max(end, value))
-        self.param.value.bounds = (fixed_start, fixed_end)
-        self._from_slider = False
-        self._slider = PromptFloatSlider(
-            value=value, start=self.start, end=self.end, step=step, format=format,
+        self._parse = parse
+        self._digits = digits
+        self._slider = pn.widgets.FloatSlider(
+            value=value, start=self.start, end=self.end, step=step,
             show_value=False, sizing_mode="stretch_width", margin=(0, 8, 5, 8))
-        self._entry = pn.widgets.FloatInput(
-            value=value, start=fixed_start, end=fixed_end, step=step, format=format,
-            width=130, margin=(0, 8), align="end")
-        self._label = pn.widgets.StaticText(value=f"{label}:", margin=(0, 10, 0, 8),
-                                            align="end")
-        self._slider.jscallback(args={"entry": self._entry}, value=SLIDER_TO_ENTRY_JS)
-        self._entry.jscallback(args={"slider": self._slider}, value=ENTRY_TO_SLIDER_JS)
+        self._entry = pn.widgets.TextInput(label=label, value=self._text(value),
+                                           sizing_mode="stretch_width", margin=(0, 8))
+        self._message = pn.pane.HTML("", visible=False, styles=ERROR_STYLE,
+                                     margin=(0, 8), sizing_mode="stretch_width",
+                                     name=name and f"{name}_error")
         self._slider.param.watch(self._on_slider, "value")
-        self._layout = pn.Column(pn.Row(self._label, self._entry), self._slider,
+        self._entry.param.watch(self._on_entry, "value")
+        self._layout = pn.Column(self._entry, self._message, self._slider,
                                  sizing_mode="stretch_width")
 
     def __panel__(self) -> pn.Column:
         return self._layout
 
+    def _text(self, v: float) -> str:
+        return f"{v:.{self._digits}g}"
+
     def _on_slider(self, event: param.parameterized.Event) -> None:
-        self._from_slider = True
+        self.value = event.new
+
+    def _on_entry(self, event: param.parameterized.Event) -> None:
+        text = event.new.strip()
+        if text == self._text(self.value):
+            return  # the box shows the value (set from here)
         try:
-            self.value = event.new
-        finally:
-            self._from_slider = False
+            v = self._parse(text)
+        except ValueError as err:
+            self.error = str(err)
+            self._entry.value = self._text(self.value)  # back to the last good value
+            return
+        self.error = ""
+        if v == self.value:
+            self._entry.value = self._text(v)
+        self.value = v
 
     @param.depends("value", watch=True)
     def _show_value(self) -> None:
-        if self._from_slider:
-            return
         v = self.value
         self.param.update(start=min(self.start, v), end=max(self.end, v))
         self._slider.param.update(start=self.start, end=self.end, value=v)
+        self._entry.value = self._text(v)
+
+    @param.depends("error", watch=True)
+    def _show_error(self) -> None:
+        self._message.param.update(object=text_html(self.error), visible=bool(self.error))
 
     @param.depends("start", "end", watch=True)
     def _show_range(self) -> None:

@@ -1,0 +1,103 @@
+"""Sessions end without a trace: a Bokeh/Panel server in this process serves the explorer
+(with app/serve.py's settings, shorter lifetimes), pages are loaded with and without their
+websocket ever connecting, and once the server has discarded the sessions no explorer,
+state, scene or document of theirs is left (gc-level evidence)."""
+
+from __future__ import annotations
+
+import asyncio
+import gc
+import threading
+import time
+import urllib.request
+from argparse import Namespace
+
+import pytest
+from bokeh.document import Document
+from explorer_browser import free_port
+from panel.io.server import get_server
+from test_security import _connect, _server_info
+from tornado.ioloop import IOLoop
+
+from app.explorer import Explorer
+from app.methods import MethodsScene
+from app.serve import MAIN, server_options
+from app.state import ExplorerState
+
+LIFETIME_MS = 1500  # unused sessions are discarded after this (app/serve.py: 20 s)
+
+
+@pytest.fixture(scope="module")
+def served():
+    """The explorer served by a server on a thread of this process; its URL and server."""
+    port = free_port()
+    opts = server_options(Namespace(port=port, address="127.0.0.1", num_procs=1,
+                                    allow_websocket_origin=[f"127.0.0.1:{port}"], prefix="",
+                                    admin=False, basic_auth=None))
+    opts.update(unused_session_lifetime_milliseconds=LIFETIME_MS,
+                check_unused_sessions_milliseconds=300)
+    box: dict = {}
+
+    def run() -> None:
+        asyncio.set_event_loop(asyncio.new_event_loop())
+        loop = IOLoop.current()
+        box["server"] = get_server({"main": str(MAIN)}, loop=loop, start=False, **opts)
+        box["loop"] = loop
+        box["server"].start()
+        loop.start()
+
+    thread = threading.Thread(target=run, daemon=True)
+    thread.start()
+    url = f"http://127.0.0.1:{port}/main"
+    deadline = time.monotonic() + 60
+    while "server" not in box and time.monotonic() < deadline:
+        time.sleep(0.1)
+    yield url, box["server"]
+    box["loop"].add_callback(box["loop"].stop)
+    thread.join(10)
+
+
+def _alive(kind: type) -> int:
+    gc.collect()
+    return sum(isinstance(o, kind) for o in gc.get_objects())
+
+
+def _wait_for_no_sessions(server, timeout: float = 30.0) -> None:
+    deadline = time.monotonic() + timeout
+    while server.get_sessions("/main") and time.monotonic() < deadline:
+        time.sleep(0.2)
+    assert not server.get_sessions("/main"), "the server kept its sessions"
+
+
+def _load(url: str) -> None:
+    with urllib.request.urlopen(url) as r:
+        assert r.status == 200
+
+
+def _load_and_connect(url: str) -> str:
+    async def go() -> str:
+        conn = await _connect(url)
+        reply = await _server_info(conn)
+        conn.close()
+        return reply
+
+    return asyncio.run(go())
+
+
+KINDS = (Explorer, ExplorerState, MethodsScene, Document)
+
+
+def test_sessions_leave_nothing_behind(served) -> None:
+    url, server = served
+    _load(url)  # warm up: imports, caches, the first session's lazy state
+    _wait_for_no_sessions(server)
+    before = {k: _alive(k) for k in KINDS}
+    for _ in range(6):
+        _load(url)  # a link preview: the websocket never connects
+    for _ in range(4):
+        assert _load_and_connect(url) == "SERVER-INFO-REPLY"  # a visit
+    assert len(server.get_sessions("/main")) >= 1
+    _wait_for_no_sessions(server)
+    after = {k: _alive(k) for k in KINDS}
+    assert after == before, f"sessions left objects behind: {before} -> {after}"
+    assert before[Explorer] == 0
