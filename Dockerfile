@@ -6,7 +6,8 @@
 # BASE: any Debian-like image with python3 >= 3.12 and its venv module.  The
 # default is the official slim image; docker/smoke.sh passes a local base made
 # with debootstrap (see docs/docker.md).  Runtime settings (PORT,
-# ALLOWED_ORIGINS, NUM_PROCS, PANEL_ARGS) are documented in docs/docker.md.
+# ALLOWED_ORIGINS, NUM_PROCS, BASIC_AUTH, ADMIN, PANEL_ARGS) are documented in
+# docs/docker.md; docker/compose.yaml runs it read-only behind nginx (docs/deploy.md).
 #
 # Stages are laid out for fast rebuilds on copy-based storage drivers (vfs):
 # the dependencies form one cached layer that a code change does not touch,
@@ -20,16 +21,17 @@ ENV PIP_NO_CACHE_DIR=1 \
     PIP_DISABLE_PIP_VERSION_CHECK=1 \
     PIP_ROOT_USER_ACTION=ignore
 WORKDIR /src
-COPY pyproject.toml ./
+COPY pyproject.toml constraints.txt ./
 # Whichever python3 the base has (/usr/local/bin in python:*, /usr/bin in
-# Debian's).  The requirements are read from pyproject.toml, so only a change
-# there reinstalls numpy, scipy and panel.  The test suites that wheels ship
+# Debian's).  The requirements are read from pyproject.toml and installed at the
+# exact versions of the tested stack (constraints.txt), so only a change to
+# either reinstalls numpy, scipy and panel.  The test suites that wheels ship
 # (~90 MB) and pip go; a .pth file puts the project (next stage) on sys.path.
 RUN python3 -c 'import sys; sys.exit(sys.version_info < (3, 12))' \
     || { echo "error: BASE must provide python3 >= 3.12" >&2; exit 1; } \
     && python3 -m venv /opt/venv \
     && /opt/venv/bin/python -c "import tomllib; p = tomllib.load(open('pyproject.toml', 'rb'))['project']; print('\n'.join(p['dependencies'] + p['optional-dependencies']['app']))" > requirements.txt \
-    && /opt/venv/bin/pip install --no-cache-dir -r requirements.txt \
+    && /opt/venv/bin/pip install --no-cache-dir -c constraints.txt -r requirements.txt \
     && find /opt/venv -depth -type d -name tests -path '*/site-packages/*/*' -exec rm -rf {} + \
     && /opt/venv/bin/pip uninstall --yes --quiet pip \
     && echo /opt/zharii/lib > "$(/opt/venv/bin/python -c 'import sysconfig; print(sysconfig.get_path("purelib"))')/zharii.pth"
@@ -37,12 +39,13 @@ RUN python3 -c 'import sys; sys.exit(sys.version_info < (3, 12))' \
 # ---- pkg: the project itself, pip-installed from the build context ----------
 FROM ${BASE} AS pkg
 # The context holds only what .dockerignore lets through: pyproject.toml,
-# README.md, core/, app/, docker/entrypoint.sh and benchmarks/results/*.csv
+# README.md, constraints.txt, core/, app/, docker/entrypoint.sh and
+# benchmarks/results/*.csv
 # (charted by the app's Methods scene, next to app/ as in the repository).
 WORKDIR /src
 COPY . .
 # /opt/zharii/lib: the installed packages core and app (+ metadata);
-# /opt/zharii/app -> lib/app, so that `panel serve app/main.py` serves them.
+# /opt/zharii/app -> lib/app (the entry point runs `python -m app.serve`).
 RUN python3 -m venv /tmp/pip \
     && /tmp/pip/bin/pip install --no-cache-dir --disable-pip-version-check --root-user-action=ignore \
          --no-deps --target /opt/zharii/lib '.[app]' \
@@ -58,13 +61,19 @@ FROM ${BASE}
 LABEL org.opencontainers.image.title="zharii-explorer" \
       org.opencontainers.image.description="Interactive explorer of Zharii's exact solution for the intermittent frictional contact of two elastic spheres (Panel/Bokeh server)" \
       org.opencontainers.image.licenses="MIT"
+# ALLOWED_ORIGINS empty: only localhost:PORT and 127.0.0.1:PORT may open the
+# websocket (list the public host[:port], or "*" on a classroom LAN).  NUM_PROCS=0:
+# one server process per CPU the container may use.  The root filesystem may be
+# read-only: the only writes are numba's compiled-kernel cache, under /tmp (a tmpfs
+# in docker/compose.yaml).
 ENV PATH=/opt/venv/bin:$PATH \
     PYTHONUNBUFFERED=1 \
     PYTHONDONTWRITEBYTECODE=1 \
     HOME=/home/app \
     PORT=5006 \
-    ALLOWED_ORIGINS=* \
-    NUM_PROCS=1
+    ALLOWED_ORIGINS= \
+    NUM_PROCS=0 \
+    NUMBA_CACHE_DIR=/tmp/numba-cache
 RUN useradd --uid 10001 --user-group --home-dir /home/app --create-home --shell /usr/sbin/nologin app
 WORKDIR /opt/zharii
 EXPOSE 5006

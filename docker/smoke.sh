@@ -2,6 +2,9 @@
 # Docker smoke test (`make docker-smoke`): build the image, run it, wait for
 # /liveness and the HEALTHCHECK, check the page, run the browser smoke tests
 # (`pytest -m smoke tests/app`) against the container, try NUM_PROCS=2, clean up.
+# The container runs as in docker/compose.yaml: read-only root filesystem, a tmpfs
+# on /tmp; the script also checks that a foreign websocket Origin is refused (403)
+# and that there is no /admin page.
 #
 # Works on a machine that cannot pull from any container registry: the base is
 # made locally by docker/build-base.sh (debootstrap) when absent, and a Docker
@@ -180,7 +183,7 @@ wait_liveness() {
 check_page() {
     local url="http://127.0.0.1:$1$2" body code
     body="$WORKDIR/page.html"
-    code=$(curl -sS --max-time 60 -o "$body" -w '%{http_code}' "$url") || die "GET $url failed"
+    code=$(curl -sSL --max-time 60 -o "$body" -w '%{http_code}' "$url") || die "GET $url failed"
     [ "$code" = 200 ] || die "GET $url answered HTTP $code"
     grep -qi '<script[^>]*bokeh' "$body" || die "GET $url: no Bokeh script in the page"
     grep -q 'Bokeh.embed' "$body" || die "GET $url: the page does not embed a Bokeh document"
@@ -188,7 +191,7 @@ check_page() {
 }
 
 t_start=$(now)
-start_container "$NAME" "$PORT"
+start_container "$NAME" "$PORT" --read-only --tmpfs /tmp:rw,nosuid,nodev,size=64m
 RUN_S=$(since "$t_start")
 LIVE_S=$(wait_liveness "$NAME" "$PORT" "$t_start")
 log "/liveness answered $LIVE_S s after the start of docker run (docker run -d itself: $RUN_S s)"
@@ -206,6 +209,25 @@ log "HEALTHCHECK: healthy"
 uid=$("$DOCKER" exec "$NAME" id -u)
 [ "$uid" != 0 ] || die "the server runs as root"
 log "server runs as uid $uid"
+
+# Locked down: a websocket from an origin not in ALLOWED_ORIGINS gets 403 (the
+# page's own origin gets 101), and there is no admin page.
+ws_status() {  # ws_status ORIGIN -> HTTP status of a websocket handshake on /main/ws
+    local token
+    token=$(curl -fsS --max-time 30 "http://127.0.0.1:$PORT/main" | grep -o '\\\?"token\\\?": *\\\?"[^"\\]*' | head -n1 | sed 's/.*"//')
+    [ -n "$token" ] || die "no session token in the page"
+    curl -s -o /dev/null -w '%{http_code}' --max-time 5 \
+        -H 'Connection: Upgrade' -H 'Upgrade: websocket' -H 'Sec-WebSocket-Version: 13' \
+        -H 'Sec-WebSocket-Key: x3JJHMbDL1EzLkh9GBhXDw==' -H "Origin: $1" \
+        -H "Sec-WebSocket-Protocol: bokeh, $token" "http://127.0.0.1:$PORT/main/ws" || true
+}
+code=$(ws_status http://evil.example)
+[ "$code" = 403 ] || die "websocket from Origin http://evil.example answered HTTP $code, not 403"
+code=$(ws_status "http://127.0.0.1:$PORT")
+[ "$code" = 101 ] || die "websocket from the page's own origin answered HTTP $code, not 101"
+code=$(curl -s -o /dev/null -w '%{http_code}' --max-time 10 "http://127.0.0.1:$PORT/admin" || true)
+[ "$code" = 404 ] || die "/admin answered HTTP $code, not 404"
+log "websocket origins: foreign 403, own 101; /admin 404; root filesystem read-only"
 
 # ---- 4. browser smoke tests --------------------------------------------------
 if [ -z "${SKIP_BROWSER:-}" ]; then
@@ -237,8 +259,10 @@ if [ -z "${SKIP_MULTIPROC:-}" ]; then
     LIVE2_S=$(wait_liveness "$NAME-procs" "$PORT2" "$t2")
     check_page "$PORT2" /main
     check_page "$PORT2" /main
-    n=$("$DOCKER" logs "$NAME-procs" 2>&1 | grep -c 'Starting Bokeh server with process id') || true
-    [ "${n:-0}" -ge 2 ] || { "$DOCKER" logs "$NAME-procs" 2>&1 | tail -n 20 >&2; die "NUM_PROCS=2 did not start 2 server processes (log shows $n)"; }
+    # the parent process forks NUM_PROCS children that serve (no ps in slim images)
+    n=$("$DOCKER" exec "$NAME-procs" python -c "import os; print(sum(b'app.serve' in open(f'/proc/{p}/cmdline', 'rb').read() for p in os.listdir('/proc') if p.isdigit()))") || true
+    [ "${n:-0}" -ge 3 ] || { "$DOCKER" logs "$NAME-procs" 2>&1 | tail -n 20 >&2; die "NUM_PROCS=2 did not start 2 server processes besides the parent ($n app.serve processes)"; }
+    n=$((n - 1))
     log "NUM_PROCS=2: $n server processes, /liveness after $LIVE2_S s"
     "$DOCKER" rm -f "$NAME-procs" >/dev/null
 fi
