@@ -531,7 +531,10 @@ class Explorer:
         ]
         template = pn.template.BootstrapTemplate(
             title="Zharii (1996): two elastic spheres in intermittent frictional contact",
-            sidebar=sidebar, main=main, sidebar_width=380, header_background="#0072B2",
+            # one root each: Bokeh rescans the whole document for every root it adds
+            sidebar=[pn.Column(*sidebar, sizing_mode="stretch_width")],
+            main=[pn.Column(*main, sizing_mode="stretch_width")],
+            sidebar_width=380, header_background="#0072B2",
             busy_indicator=None)  # its per-message restyling slows every frame
         template.config.raw_css.append(CSS)
         return template
@@ -544,7 +547,7 @@ class Explorer:
             pn.state.on_session_destroyed(self.close)
         return page
 
-    def close(self, session_context=None) -> None:
+    def close(self, session_context) -> None:
         """The session ended: stop the animation's tick and the Methods runs."""
         if self._callback is not None:
             self._callback.stop()
