@@ -73,17 +73,27 @@ class ExactSlider(pn.viewable.Viewer):
     def _on_entry(self, event: param.parameterized.Event) -> None:
         text = event.new.strip()
         if text == self._text(self.value):
-            return  # the box shows the value (set from here)
+            return  # the box shows the value (set from here, or the refused text reverted)
         try:
             v = self._parse(text)
         except ValueError as err:
             self.error = str(err)
-            self._entry.value = self._text(self.value)  # back to the last good value
+            self._show_later(self._text(self.value))  # back to the last good value
             return
         self.error = ""
         if v == self.value:
-            self._entry.value = self._text(v)
+            self._show_later(self._text(v))
         self.value = v
+
+    def _show_later(self, text: str) -> None:
+        """Show `text` in the box once the browser's entry has been handled (Panel sends
+        no change of a property back to the browser while handling the browser's change
+        of it)."""
+        doc = pn.state.curdoc
+        if doc is None or doc.session_context is None:
+            self._entry.value = text
+        else:
+            doc.add_next_tick_callback(lambda: setattr(self._entry, "value", text))
 
     @param.depends("value", watch=True)
     def _show_value(self) -> None:

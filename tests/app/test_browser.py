@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from urllib.parse import urlencode
 
 import numpy as np
 import pytest
@@ -19,7 +20,7 @@ from explorer_browser import (
 )
 
 from app.scenes import CURVE_POINTS
-from app.state import ExplorerState
+from app.state import ExplorerState, parse_query
 from core import Contact
 
 pytestmark = pytest.mark.browser
@@ -346,11 +347,37 @@ def test_number_box_follows_the_slider_and_takes_exact_values(browser, url) -> N
     page.close()
 
 
+@pytest.mark.parametrize(("box", "typed"), [(0, "-1"), (0, "abc"), (0, "1e13"), (2, "0"),
+                                            (3, "0.7"), (4, "3.0")])
+def test_a_refused_entry_says_why_under_its_box_and_keeps_the_value(
+        browser, url, box: int, typed: str) -> None:
+    """Boxes 0-4: psi, tau0, mu, nu, tau.  The message is the URL's for the same value."""
+    name = ("psi", "tau0", "mu", "nu", "tau")[box]
+    page, console = open_explorer(browser, url)
+    entry = page.locator("input.bk-input").nth(box)
+    before = entry.input_value()
+    T = column(page, "force", "T")
+    entry.fill(typed)
+    entry.press("Enter")
+    message = parse_query({name: typed})[1][0]
+    page.get_by_text(message).wait_for(timeout=20_000)
+    assert page.get_by_text(message).is_visible()
+    page.wait_for_function("([b, v]) => b.value === v", arg=[entry.element_handle(), before],
+                           timeout=20_000)
+    assert column(page, "force", "T") == T  # nothing changed
+    entry.fill(("3", "0.4", "0.3", "0.25", "2")[box])  # a good value clears the message
+    entry.press("Enter")
+    page.get_by_text(message).wait_for(state="hidden", timeout=20_000)
+    assert errors(console) == []
+    page.close()
+
+
 @pytest.mark.smoke
 def test_bad_query_shows_message_and_falls_back(browser, url) -> None:
-    page, console = open_explorer(browser, f"{url}?psi=banana&tau0=9")
-    assert page.get_by_text("psi='banana' is not a number").is_visible()
-    assert page.get_by_text("tau0=9 is out of range").is_visible()
+    query = {"psi": "banana", "tau0": "9"}
+    page, console = open_explorer(browser, f"{url}?{urlencode(query)}")
+    for message in parse_query(query)[1]:
+        assert page.get_by_text(message).is_visible(), message
     assert column(page, "impulse_marker", "psi")[0] == pytest.approx(math.sqrt(2) + 1)
     assert errors(console) == []
     page.close()
