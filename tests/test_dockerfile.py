@@ -334,10 +334,10 @@ def test_dockerignore_keeps_the_context_small():
 
 
 def run_entrypoint(tmp_path: Path, env: dict[str, str], *args: str) -> subprocess.CompletedProcess:
-    """Run docker/entrypoint.sh under /bin/sh with a `panel` that prints its argv."""
+    """Run docker/entrypoint.sh under /bin/sh with a `python` that prints its argv."""
     bindir = tmp_path / "bin"
     bindir.mkdir(exist_ok=True)
-    fake = bindir / "panel"
+    fake = bindir / "python"
     fake.write_text('#!/bin/sh\nfor a in "$@"; do printf "%s\\n" "$a"; done\n')
     fake.chmod(0o755)
     full_env = {"PATH": f"{bindir}:/usr/bin:/bin", **env}
@@ -355,16 +355,15 @@ def test_entrypoint_defaults(tmp_path):
     proc = run_entrypoint(tmp_path, {})
     assert proc.returncode == 0, proc.stderr
     argv = proc.stdout.splitlines()
-    assert argv[:2] == ["serve", "app/main.py"]
+    assert argv[:2] == ["-m", "app.serve"]
     joined = " ".join(argv)
-    for flag in (
-        "--address 0.0.0.0",
-        "--port 5006",
-        "--liveness",
-        "--num-procs 1",
-        "--allow-websocket-origin=*",
-    ):
+    for flag in ("--address 0.0.0.0", "--port 5006"):
         assert flag in joined, (flag, argv)
+    procs = int(argv[argv.index("--num-procs") + 1])
+    assert 1 <= procs <= (os.cpu_count() or 1)  # NUM_PROCS=0: one per CPU it may use
+    # locked down by default: app.serve's own origins (localhost:PORT, 127.0.0.1:PORT)
+    assert not [a for a in argv if a.startswith("--allow-websocket-origin")], argv
+    assert "--admin" not in argv and not [a for a in argv if a.startswith("--basic-auth")]
 
 
 def test_entrypoint_reads_the_environment(tmp_path):
@@ -373,7 +372,9 @@ def test_entrypoint_reads_the_environment(tmp_path):
         "ADDRESS": "127.0.0.1",
         "NUM_PROCS": "3",
         "ALLOWED_ORIGINS": "explorer.example.org, localhost:8080,,",
-        "PANEL_ARGS": "--keep-alive 5000",
+        "PANEL_ARGS": "--prefix /y",
+        "BASIC_AUTH": "secret",
+        "ADMIN": "1",
     }
     proc = run_entrypoint(tmp_path, env, "--prefix", "/x")
     assert proc.returncode == 0, proc.stderr
@@ -383,9 +384,17 @@ def test_entrypoint_reads_the_environment(tmp_path):
         "--allow-websocket-origin=localhost:8080",
     ]
     joined = " ".join(argv)
-    for flag in ("--address 127.0.0.1", "--port 8080", "--num-procs 3", "--keep-alive 5000"):
+    for flag in ("--address 127.0.0.1", "--port 8080", "--num-procs 3", "--prefix /y",
+                 "--basic-auth=secret", "--admin"):
         assert flag in joined, (flag, argv)
     assert argv[-2:] == ["--prefix", "/x"]
+
+
+def test_entrypoint_refuses_admin_without_a_password(tmp_path):
+    proc = run_entrypoint(tmp_path, {"ADMIN": "1"})
+    assert proc.returncode == 64
+    assert proc.stdout == ""
+    assert "ADMIN needs BASIC_AUTH" in proc.stderr
 
 
 @pytest.mark.parametrize("env", [{"PORT": "50x6"}, {"NUM_PROCS": "-1"}, {"ALLOWED_ORIGINS": " , "}])
