@@ -61,3 +61,27 @@ lock:
 
 clean:
 	rm -rf $(VENV) .pytest_cache .ruff_cache .hypothesis
+
+# ---- deployment: replicas behind nginx, load test (docs/deploy.md) -----------
+.PHONY: nginx replica-smoke load-test load-test-replicas
+
+# Debian's nginx for the replica smoke test (installed only; no service is started).
+nginx:
+	@command -v nginx >/dev/null 2>&1 || [ -x /usr/sbin/nginx ] || { \
+		SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
+		$$SUDO apt-get update -qq && $$SUDO env DEBIAN_FRONTEND=noninteractive RUNLEVEL=1 \
+			apt-get install -y -qq nginx >/dev/null; }
+	@PATH="$$PATH:/usr/sbin" nginx -v
+
+# Two replicas behind nginx with docker/nginx.conf, on loopback: sticky sessions,
+# foreign origin refused, one replica killed (also tests/deploy/test_replicas.py).
+replica-smoke: venv nginx
+	$(PY) docker/replicas.py smoke
+
+# 10, 25, 50, 100 sessions moving the psi slider every 0.3 s (about 6 minutes):
+# one server with a process per core, then two replicas behind nginx.
+load-test: venv
+	$(PY) benchmarks/load_test.py --serve 2
+
+load-test-replicas: venv nginx
+	$(PY) benchmarks/load_test.py --replicas 2

@@ -1,0 +1,558 @@
+"""Load test of the explorer server: N browser-like sessions, each moving the ψ slider.
+
+Each simulated user speaks Bokeh's websocket protocol, as BokehJS does in a browser:
+
+1. ``GET /main`` (the server builds the session's document; cookies are kept, so a
+   balancer's sticky cookie is honoured), the session token is read from the page;
+2. the websocket ``/main/ws`` with that token and the page's own ``Origin``; after the
+   server's ``ACK`` it sends ``PULL-DOC-REQ`` and finds, in the document it gets, the ψ
+   slider's model and the ``ColumnDataSource`` named ``force``;
+3. every ``--interval`` seconds (0.3 s; each session with its own random phase) it sends
+   a ``PATCH-DOC`` that sets the slider's ``value`` to a new ψ, and times how long the
+   server takes to send the ``PATCH-DOC`` that changes the ``force`` source's data.
+   One change is in flight per session: a tick that finds the previous change still
+   unanswered is skipped and counted (``late``), as a browser would merge the moves.
+   A change unanswered after ``--timeout`` s, a server ``ERROR`` reply, a dropped
+   connection or a failed page load counts as an error.
+
+Levels (``--levels 10,25,50,100``) are run one after the other on the same growing set
+of sessions (sessions are opened, a few at a time, before a level starts); each level
+runs ``--warmup`` s unrecorded, then ``--duration`` s recorded.  Per level it reports
+p50/p95/max latency, the changes answered, late ticks, errors, the server's resident
+memory (RSS, all its processes) and its CPU use (in % of one core, over the recorded
+window), and the load client's own CPU (it shares the machine's cores with the server).
+
+Bounded: at most ``--max-sessions`` (200) sessions, every level ends after its
+duration, every wait has a timeout, and the target must be a loopback address.
+
+    # a server started here (python -m app.serve, 2 processes = one per core):
+    python benchmarks/load_test.py --serve 2
+    # any running server or balancer on this machine, its processes found by port:
+    python benchmarks/load_test.py --url http://127.0.0.1:8080/main --pids 1234,1240
+    # two replicas behind nginx (docker/replicas.py), everything started and stopped here:
+    python benchmarks/load_test.py --replicas 2
+
+Results: a table on stdout, and ``--json FILE`` for the raw figures.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import ipaddress
+import json
+import os
+import random
+import re
+import signal
+import socket
+import statistics
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from http.cookies import SimpleCookie
+from pathlib import Path
+from urllib.parse import urlsplit
+
+from tornado.httpclient import AsyncHTTPClient, HTTPRequest
+from tornado.websocket import WebSocketClosedError, websocket_connect
+
+ROOT = Path(__file__).resolve().parents[1]
+TOKEN = re.compile(r'\\?"token\\?":\s*\\?"([^"\\]+)')
+PSI_LABEL = re.compile(r"^\s*ψ(\s|=|$)")
+
+
+# ---------------------------------------------------------------- the document
+
+
+def models_of(doc_json: dict) -> tuple[dict[str, dict], dict[str, str]]:
+    """All model representations in a serialized document, by id, and each one's parent."""
+    models: dict[str, dict] = {}
+    parent: dict[str, str] = {}
+
+    def walk(obj, owner: str | None) -> None:
+        if isinstance(obj, dict):
+            if "id" in obj and obj.get("type") == "object":
+                mid = obj["id"]
+                if "attributes" in obj or mid not in models:
+                    models[mid] = obj
+                if owner is not None and mid != owner:
+                    parent.setdefault(mid, owner)
+                owner = mid
+            for v in obj.values():
+                walk(v, owner)
+        elif isinstance(obj, list):
+            for v in obj:
+                walk(v, owner)
+
+    walk(doc_json, None)
+    return models, parent
+
+
+def _strings(obj) -> list[str]:
+    if isinstance(obj, str):
+        return [obj]
+    if isinstance(obj, dict):
+        return [s for v in obj.values() for s in _strings(v)]
+    if isinstance(obj, list):
+        return [s for v in obj for s in _strings(v)]
+    return []
+
+
+def find_targets(doc_json: dict, slider: str | None = None) -> tuple[str, str, float, float]:
+    """(slider id, force source id, slider start, slider end) in a pulled document.
+
+    The ψ slider is the Slider model named ``slider`` (default ``psi``) if there is one;
+    else the Slider whose title, or the label next to it (a text in the smallest layout
+    around it that holds no other slider), starts with "ψ".
+    """
+    models, parent = models_of(doc_json)
+    force = [i for i, m in models.items() if m.get("name") == "ColumnDataSource"
+             and m.get("attributes", {}).get("name") == "force"]
+    if len(force) != 1:
+        raise LookupError(f"expected one ColumnDataSource named 'force', found {len(force)}")
+    sliders = [i for i, m in models.items() if m.get("name") == "Slider"]
+
+    def attrs(i: str) -> dict:
+        return models[i].get("attributes", {})
+
+    wanted = slider or "psi"
+    named = [i for i in sliders if attrs(i).get("name") == wanted]
+    if slider and not named:
+        raise LookupError(f"no Slider model named {slider!r}")
+    if not named:
+        descendants: dict[str, set[str]] = {}
+        for child in models:
+            p = parent.get(child)
+            while p is not None:
+                descendants.setdefault(p, set()).add(child)
+                p = parent.get(p)
+        for i in sliders:
+            if PSI_LABEL.match(str(attrs(i).get("title") or "")):
+                named.append(i)
+                continue
+            p = parent.get(i)
+            while p is not None:
+                inside = descendants.get(p, set())
+                if any(j in inside for j in sliders if j != i):
+                    break  # this layout holds other sliders too: not the slider's own
+                texts = [s for j in inside if j != i for s in _strings(attrs(j))]
+                if any(PSI_LABEL.match(s) for s in texts):
+                    named.append(i)
+                    break
+                p = parent.get(p)
+    if len(named) != 1:
+        raise LookupError(f"expected one ψ slider, found {len(named)} among {len(sliders)} sliders")
+    a = attrs(named[0])
+    return named[0], force[0], float(a.get("start", 0.05)), float(a.get("end", 30.0))
+
+
+# ---------------------------------------------------------------- one session
+
+
+@dataclass
+class Stats:
+    latencies: list[float] = field(default_factory=list)  # seconds
+    sent: int = 0
+    late: int = 0
+    errors: dict[str, int] = field(default_factory=dict)
+
+    def error(self, kind: str) -> None:
+        self.errors[kind] = self.errors.get(kind, 0) + 1
+
+
+class Session:
+    """One simulated browser tab."""
+
+    def __init__(self, url: str, http: AsyncHTTPClient, timeout: float, slider: str | None):
+        self.url, self.http, self.timeout, self.slider_name = url, http, timeout, slider
+        self.cookies: dict[str, str] = {}
+        self.conn = None
+        self.pending: tuple[str, float] | None = None  # (msgid, sent at)
+        self.stats: Stats | None = None  # where results go (None: not recorded)
+        self.alive = False
+        self._n = 0
+        self._reader: asyncio.Task | None = None
+
+    async def open(self) -> None:
+        parts = urlsplit(self.url)
+        r = await self.http.fetch(self.url, request_timeout=60, follow_redirects=True)
+        for value in r.headers.get_list("Set-Cookie"):
+            for k, morsel in SimpleCookie(value).items():
+                self.cookies[k] = morsel.value
+        m = TOKEN.search(r.body.decode())
+        if not m:
+            raise LookupError("no session token in the page")
+        headers = {"Origin": f"{parts.scheme}://{parts.netloc}",
+                   "Sec-WebSocket-Protocol": f"bokeh, {m.group(1)}"}
+        if self.cookies:
+            headers["Cookie"] = "; ".join(f"{k}={v}" for k, v in self.cookies.items())
+        ws = "wss" if parts.scheme == "https" else "ws"
+        req = HTTPRequest(f"{ws}://{parts.netloc}{parts.path.rstrip('/')}/ws", headers=headers,
+                          request_timeout=60, connect_timeout=30)
+        self.conn = await websocket_connect(req, max_message_size=64 << 20)
+        header, _ = await asyncio.wait_for(self._read(), 60)
+        if header.get("msgtype") != "ACK":
+            raise ConnectionError(f"expected ACK, got {header.get('msgtype')}")
+        await self._send("PULL-DOC-REQ", {})
+        for _ in range(100):  # the server may send patches (e.g. the URL) before the reply
+            header, content = await asyncio.wait_for(self._read(), 60)
+            if header.get("msgtype") == "PULL-DOC-REPLY":
+                break
+        else:
+            raise ConnectionError("no PULL-DOC-REPLY")
+        self.slider, self.force, self.start, self.end = find_targets(json.loads(content),
+                                                                      self.slider_name)
+        self.force_ref = f'"model":{{"id":"{self.force}"}}'
+        self.value = None
+        self.alive = True
+        self._reader = asyncio.create_task(self._read_loop())
+
+    async def _read(self) -> tuple[dict, str]:
+        """One whole message: (header, content text); buffers are read and dropped."""
+        frames = []
+        for _ in range(3):
+            f = await self.conn.read_message()
+            if f is None:
+                raise ConnectionError("websocket closed")
+            frames.append(f)
+        header = json.loads(frames[0])
+        for _ in range(2 * int(header.get("num_buffers", 0))):
+            if await self.conn.read_message() is None:
+                raise ConnectionError("websocket closed")
+        return header, frames[2]
+
+    async def _send(self, msgtype: str, content: dict) -> str:
+        self._n += 1
+        msgid = f"lt{self._n}"
+        for frame in ({"msgid": msgid, "msgtype": msgtype}, {}, content):
+            await self.conn.write_message(json.dumps(frame))
+        return msgid
+
+    async def _read_loop(self) -> None:
+        try:
+            while True:
+                header, content = await self._read()
+                kind = header.get("msgtype")
+                if kind == "PATCH-DOC" and self.pending and self.force_ref in content:
+                    if self.stats is not None:
+                        self.stats.latencies.append(time.perf_counter() - self.pending[1])
+                    self.pending = None
+                elif kind == "ERROR":
+                    if self.stats is not None:
+                        self.stats.error("server ERROR reply")
+                    if self.pending and header.get("reqid") == self.pending[0]:
+                        self.pending = None
+        except (ConnectionError, WebSocketClosedError, asyncio.CancelledError):
+            pass
+        except Exception:  # a malformed message: this session is lost
+            pass
+        finally:
+            self.alive = False
+
+    async def move(self) -> None:
+        """One tick: send a new ψ unless the previous one is still unanswered."""
+        if not self.alive:
+            if self.stats is not None:
+                self.stats.error("connection lost")
+            return
+        now = time.perf_counter()
+        if self.pending:
+            if now - self.pending[1] < self.timeout:
+                if self.stats is not None:
+                    self.stats.late += 1
+                return
+            if self.stats is not None:
+                self.stats.error(f"no update within {self.timeout:g} s")
+            self.pending = None
+        lo, hi = max(self.start, 0.2), min(self.end, 20.0)
+        v = round(random.uniform(lo, hi), 6)
+        while v == self.value:
+            v = round(random.uniform(lo, hi), 6)
+        self.value = v
+        event = {"kind": "ModelChanged", "model": {"id": self.slider}, "attr": "value", "new": v}
+        try:
+            msgid = f"lt{self._n + 1}"
+            self.pending = (msgid, time.perf_counter())
+            await self._send("PATCH-DOC", {"events": [event]})
+            if self.stats is not None:
+                self.stats.sent += 1
+        except WebSocketClosedError:
+            self.pending = None
+            self.alive = False
+            if self.stats is not None:
+                self.stats.error("connection lost")
+
+    def close(self) -> None:
+        if self._reader:
+            self._reader.cancel()
+        if self.conn is not None:
+            self.conn.close()
+
+
+# ---------------------------------------------------------------- server metrics
+
+
+def process_tree(pids: list[int]):
+    """psutil processes of `pids` and all their descendants (e.g. --num-procs children)."""
+    import psutil
+
+    procs = {}
+    for pid in pids:
+        try:
+            p = psutil.Process(pid)
+        except psutil.NoSuchProcess:
+            continue
+        for q in [p, *p.children(recursive=True)]:
+            procs[q.pid] = q
+    return list(procs.values())
+
+
+def usage(pids: list[int]) -> tuple[float, dict[int, float]]:
+    """(RSS in MiB summed, {pid: CPU seconds user+system}) over the processes' trees."""
+    import psutil
+
+    rss, cpu = 0.0, {}
+    for p in process_tree(pids):
+        try:
+            rss += p.memory_info().rss / 2**20
+            t = p.cpu_times()
+            cpu[p.pid] = t.user + t.system
+        except psutil.NoSuchProcess:
+            pass
+    return rss, cpu
+
+
+# ---------------------------------------------------------------- a run
+
+
+def pct(values: list[float], q: float) -> float:
+    if not values:
+        return float("nan")
+    if len(values) == 1:
+        return values[0]
+    return statistics.quantiles(values, n=100, method="inclusive")[round(q) - 1]
+
+
+async def run_levels(url: str, levels: list[int], duration: float, warmup: float,
+                     interval: float, timeout: float, pids: list[int], slider: str | None,
+                     open_concurrency: int = 4) -> list[dict]:
+    AsyncHTTPClient.configure(None, max_clients=max(levels) + 10)
+    http = AsyncHTTPClient()
+    sessions: list[Session] = []
+    results = []
+    try:
+        for n in levels:
+            stats = Stats()
+            t_open = time.perf_counter()
+            sem = asyncio.Semaphore(open_concurrency)
+
+            async def opened(s: Session, sem=sem, stats=stats) -> Session | None:
+                async with sem:
+                    try:
+                        await asyncio.wait_for(s.open(), 120)
+                        return s
+                    except Exception as err:  # counted, reported
+                        stats.error(f"session open failed: {type(err).__name__}: {err}"[:120])
+                        s.close()
+                        return None
+
+            new = [Session(url, http, timeout, slider) for _ in range(n - len(sessions))]
+            sessions += [s for s in await asyncio.gather(*map(opened, new)) if s]
+            open_s = time.perf_counter() - t_open
+            live = [s for s in sessions if s.alive]
+            print(f"[load] {len(live)} sessions open ({len(new)} new in {open_s:.1f} s); "
+                  f"warm-up {warmup:g} s, then {duration:g} s recorded", file=sys.stderr)
+
+            async def ticker(s: Session, until: float) -> None:
+                next_t = time.perf_counter() + random.uniform(0, interval)
+                while next_t < until:
+                    await asyncio.sleep(max(0.0, next_t - time.perf_counter()))
+                    await s.move()
+                    next_t += interval
+
+            t0 = time.perf_counter()
+            await asyncio.gather(*(ticker(s, t0 + warmup) for s in live))
+            for s in live:
+                s.stats = stats
+            rss0, cpu0 = usage(pids)
+            me0 = time.process_time()
+            t1 = time.perf_counter()
+            await asyncio.gather(*(ticker(s, t1 + duration) for s in live))
+            # changes still in flight get their timeout to be answered
+            end = time.perf_counter() + timeout
+            while any(s.pending and s.alive for s in live) and time.perf_counter() < end:
+                await asyncio.sleep(0.05)
+            wall = max(time.perf_counter() - t1, 1e-3)
+            rss1, cpu1 = usage(pids)
+            me = time.process_time() - me0
+            for s in live:
+                if s.pending and s.alive:
+                    stats.error(f"no update within {timeout:g} s")
+                s.stats = None
+                s.pending = None
+            lat = sorted(x * 1e3 for x in stats.latencies)
+            row = {
+                "sessions": n, "open": len(live), "duration_s": round(wall, 1),
+                "changes_sent": stats.sent, "updates": len(lat), "late_ticks": stats.late,
+                "errors": sum(stats.errors.values()), "error_kinds": stats.errors,
+                "p50_ms": round(pct(lat, 50), 1), "p95_ms": round(pct(lat, 95), 1),
+                "max_ms": round(lat[-1], 1) if lat else float("nan"),
+                "updates_per_s": round(len(lat) / wall, 1),
+                "server_rss_mib": round(rss1, 0), "server_rss_before_mib": round(rss0, 0),
+                "server_cpu_pct": round(100 * (sum(cpu1.values()) - sum(cpu0.values())) / wall)
+                if pids else None,
+                # per process (a parent that only forks --num-procs children shows ~0)
+                "server_cpu_pct_per_process": sorted(
+                    (round(100 * (c - cpu0.get(pid, 0.0)) / wall) for pid, c in cpu1.items()),
+                    reverse=True),
+                "client_cpu_pct": round(100 * me / wall, 0),
+                "session_open_s": round(open_s, 1),
+            }
+            results.append(row)
+            print(f"[load] {json.dumps(row)}", file=sys.stderr)
+    finally:
+        for s in sessions:
+            s.close()
+        http.close()
+    return results
+
+
+# ---------------------------------------------------------------- servers to test
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def wait_http(url: str, timeout: float = 90) -> None:
+    import urllib.request
+
+    end = time.time() + timeout
+    while True:
+        try:
+            with urllib.request.urlopen(url, timeout=5) as r:
+                if r.status == 200:
+                    return
+        except OSError:
+            pass
+        if time.time() > end:
+            raise TimeoutError(f"{url} did not answer within {timeout:g} s")
+        time.sleep(0.3)
+
+
+def serve(procs: int) -> tuple[subprocess.Popen, str]:
+    """Start `python -m app.serve --num-procs procs` on a free loopback port."""
+    port = free_port()
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "app.serve", "--port", str(port), "--num-procs", str(procs)],
+        cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    wait_http(f"http://127.0.0.1:{port}/liveness")
+    return proc, f"http://127.0.0.1:{port}/main"
+
+
+def stop(proc: subprocess.Popen) -> None:
+    if proc.poll() is None:
+        os.killpg(proc.pid, signal.SIGTERM)
+        try:
+            proc.wait(15)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait(5)
+
+
+def loopback_only(url: str) -> None:
+    host = urlsplit(url).hostname or ""
+    try:
+        ok = host == "localhost" or ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        ok = False
+    if not ok:
+        raise SystemExit(f"refusing to load {host!r}: this test targets loopback addresses only")
+
+
+def table(results: list[dict]) -> str:
+    head = ("| sessions | p50 ms | p95 ms | max ms | updates/s | late ticks | errors "
+            "| server RSS MiB | server CPU % | client CPU % |")
+    lines = [head, "|" + " --- |" * 10]
+    for r in results:
+        lines.append(
+            f"| {r['sessions']} | {r['p50_ms']} | {r['p95_ms']} | {r['max_ms']} "
+            f"| {r['updates_per_s']} | {r['late_ticks']} | {r['errors']} "
+            f"| {r['server_rss_mib']:.0f} | {r['server_cpu_pct']} | {r['client_cpu_pct']} |")
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--url", help="the app's page on a running server or balancer "
+                                     "(loopback), e.g. http://127.0.0.1:5006/main")
+    where.add_argument("--serve", type=int, metavar="PROCS",
+                       help="start python -m app.serve --num-procs PROCS here and test it")
+    where.add_argument("--replicas", type=int, metavar="N",
+                       help="start N replicas behind nginx (docker/replicas.py) and test "
+                            "through the balancer")
+    p.add_argument("--procs", type=int, default=1,
+                   help="with --replicas: --num-procs of each replica (default 1)")
+    p.add_argument("--pids", default="", help="comma-separated server pids (with --url) "
+                   "whose process trees' RSS and CPU are reported")
+    p.add_argument("--levels", default="10,25,50,100")
+    p.add_argument("--duration", type=float, default=30.0, help="recorded seconds per level")
+    p.add_argument("--warmup", type=float, default=5.0, help="unrecorded seconds per level")
+    p.add_argument("--interval", type=float, default=0.3, help="seconds between moves")
+    p.add_argument("--timeout", type=float, default=5.0, help="seconds before a change "
+                   "without its update counts as an error")
+    p.add_argument("--slider", default=None, help="name of the ψ Slider model (default: "
+                   "the one named 'psi', else found by its 'ψ' label)")
+    p.add_argument("--max-sessions", type=int, default=200)
+    p.add_argument("--json", type=Path, help="write the results here")
+    args = p.parse_args(argv)
+    levels = sorted({int(x) for x in args.levels.split(",") if x.strip()})
+    if not levels or levels[0] < 1 or levels[-1] > args.max_sessions:
+        p.error(f"levels must be between 1 and --max-sessions ({args.max_sessions})")
+
+    started = None
+    stack = None
+    pids = [int(x) for x in args.pids.split(",") if x.strip()]
+    if args.serve is not None:
+        started, url = serve(args.serve)
+        pids = [started.pid]
+        setup = f"python -m app.serve --num-procs {args.serve}"
+    elif args.replicas is not None:
+        sys.path.insert(0, str(ROOT / "docker"))
+        import replicas  # docker/replicas.py
+
+        stack = replicas.Stack(n=args.replicas, procs=args.procs).start()
+        url = stack.url + "/main"
+        pids = [r.proc.pid for r in stack.replicas]
+        setup = (f"{args.replicas} x python -m app.serve --num-procs {args.procs} behind "
+                 f"nginx {stack.nginx_version} (docker/nginx.conf)")
+    else:
+        url = args.url or "http://127.0.0.1:5006/main"
+        setup = f"{url} (pids {pids or 'not given'})"
+    loopback_only(url)
+    try:
+        print(f"[load] {setup}; {os.cpu_count()} CPUs; levels {levels}", file=sys.stderr)
+        results = asyncio.run(run_levels(url, levels, args.duration, args.warmup,
+                                         args.interval, args.timeout, pids, args.slider))
+    finally:
+        if started is not None:
+            stop(started)
+        if stack is not None:
+            stack.stop()
+    print(f"setup: {setup}; {os.cpu_count()} CPUs; a move every {args.interval:g} s per "
+          f"session; {args.duration:g} s recorded per level after {args.warmup:g} s")
+    print(table(results))
+    if args.json:
+        args.json.write_text(json.dumps({"setup": setup, "cpus": os.cpu_count(),
+                                         "args": {k: str(v) for k, v in vars(args).items()},
+                                         "results": results}, indent=2) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
