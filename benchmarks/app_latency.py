@@ -6,14 +6,16 @@ Measures
       median and p90 over N moves;
   (b) animation frame rate: distinct tau-marker positions painted per second while
       playing.
-Serves the app itself with `panel serve` unless EXPLORER_URL is set.
+Serves the app itself with `python -m app.serve` unless EXPLORER_URL is set.
 
     .venv/bin/python benchmarks/app_latency.py [--moves 30] [--seconds 5]
                                                [--width 1600] [--height 1400]
+                                               [--runs 1] [--compare REV]
 
-Plots out of view are painted when they come into view (app/browser.py, shim 5), so
-the page size matters: the figures say how many plots were in view.  A tall page
-(--height 3200) has all of them in view.
+`--compare REV` serves the checkout's git revision REV (a worktree in a temporary
+directory) beside the working tree and measures the two in alternation, `--runs` times
+each (paired A/B: both arms see the same machine load).  The figures say how many plots
+were in the page's view (a tall page, --height 3200, has all of them in view).
 
 It also prints a yardstick of the machine's speed before and after the run (one
 closed-form contact, in us), so that a slow run can be told from a slow machine.
@@ -22,8 +24,11 @@ closed-form contact, in us), so that a slow run can be told from a slow machine.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import statistics
+import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -81,11 +86,15 @@ JS_FPS = """(ms) => new Promise((resolve) => {
 })"""
 
 
-#: [plots in view, plots] (the shim's IntersectionObserver state; displayed plots only).
+#: [plots in the viewport, plots on the page] (canvases of Bokeh plots, by their boxes).
 JS_IN_VIEW = """() => {
-  const {PlotView} = Bokeh.require("models/plots/plot");
-  const plots = __views((v) => v instanceof PlotView && v.is_displayed);
-  return [plots.filter((v) => v.__zharii_in_view !== false).length, plots.length];
+  const plots = __views((v) => v.model != null && v.model.type === "Figure"
+                                && v.el.getBoundingClientRect().width > 0);
+  const inside = plots.filter((v) => {
+    const r = v.el.getBoundingClientRect();
+    return r.bottom > 0 && r.top < window.innerHeight && r.right > 0 && r.left < window.innerWidth;
+  });
+  return [inside.length, plots.length];
 }"""
 
 
@@ -144,6 +153,34 @@ def machine_reference() -> float:
     return 1e6 * min(closed_form_time(Contact, 0.4, 0.5235987755982988) for _ in range(5))
 
 
+def report(label: str, rows: list[dict[str, float]]) -> None:
+    """Print one arm's runs: per-run medians and frame rates, and how many meet the targets
+    (median <= 100 ms, >= 30 frames/s)."""
+    med = [r["median_ms"] for r in rows]
+    fps = [r["fps"] for r in rows]
+    print(f"{label}: slider move median per run (ms): {' '.join(f'{m:.0f}' for m in med)}; "
+          f"<= 100 ms in {sum(m <= 100 for m in med)} of {len(med)}")
+    print(f"{label}: frames/s per run: {' '.join(f'{f:.1f}' for f in fps)}; "
+          f">= 30 in {sum(f >= 30 for f in fps)} of {len(fps)}")
+    p90 = " ".join(f"{r['p90_ms']:.0f}" for r in rows)
+    print(f"{label}: median of medians {statistics.median(med):.0f} ms, p90 per run {p90} ms, "
+          f"median {statistics.median(fps):.1f} frames/s")
+
+
+@contextlib.contextmanager
+def worktree(rev: str):
+    """A checkout of git revision `rev` in a temporary directory (removed afterwards)."""
+    with tempfile.TemporaryDirectory(prefix="ab-") as tmp:
+        path = Path(tmp) / "tree"
+        subprocess.run(["git", "-C", str(ROOT), "worktree", "add", "--detach", str(path), rev],
+                       check=True, capture_output=True)
+        try:
+            yield path
+        finally:
+            subprocess.run(["git", "-C", str(ROOT), "worktree", "remove", "--force", str(path)],
+                           check=False, capture_output=True)
+
+
 def main() -> None:
     """Command line entry: print the figures."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -151,17 +188,27 @@ def main() -> None:
     ap.add_argument("--seconds", type=float, default=5.0)
     ap.add_argument("--width", type=int, default=1600)
     ap.add_argument("--height", type=int, default=1400)
+    ap.add_argument("--runs", type=int, default=1, help="runs (per arm with --compare)")
+    ap.add_argument("--compare", metavar="REV", help="also measure git revision REV, paired")
     args = ap.parse_args()
     before = machine_reference()
-    with explorer_server() as url:
-        r = measure(url, args.moves, args.seconds, args.width, args.height)
+    size = (args.moves, args.seconds, args.width, args.height)
+    arms = {"working tree": None}
+    with contextlib.ExitStack() as stack:
+        if args.compare:
+            arms[args.compare] = stack.enter_context(worktree(args.compare))
+        urls = {k: stack.enter_context(explorer_server(root)) for k, root in arms.items()}
+        rows: dict[str, list] = {k: [] for k in arms}
+        for i in range(args.runs):
+            order = list(arms) if i % 2 == 0 else list(reversed(arms))
+            for k in order:
+                rows[k].append(measure(urls[k], *size))
     after = machine_reference()
-    shown, plots = r["in_view"]
-    print(f"page {args.width}x{args.height}: {shown} of {plots} plots in view")
-    print(f"slider move -> all plots updated ({r['moves']} moves): "
-          f"median {r['median_ms']:.0f} ms, p90 {r['p90_ms']:.0f} ms")
-    print(f"animation: {r['fps']:.1f} frames/s shown "
-          f"(browser painted {r['paint_fps']:.0f} frames/s)")
+    shown, plots = rows["working tree"][0]["in_view"]
+    print(f"page {args.width}x{args.height}: {shown} of {plots} plots in view; "
+          f"{args.moves} psi moves and {args.seconds:g} s of animation per run")
+    for k, r in rows.items():
+        report(k, r)
     print(f"machine yardstick (one closed-form contact): {before:.0f} us before, "
           f"{after:.0f} us after the run")
 

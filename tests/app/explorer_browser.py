@@ -61,16 +61,17 @@ def wait_for_http(url: str, timeout: float = 60.0) -> None:
 
 
 @contextlib.contextmanager
-def explorer_server() -> Iterator[str]:
-    """Yield the explorer's URL: EXPLORER_URL if set, else a fresh `python -m app.serve`."""
+def explorer_server(root: Path | None = None) -> Iterator[str]:
+    """Yield the explorer's URL: EXPLORER_URL if set, else a fresh `python -m app.serve`
+    of the checkout at `root` (default: this one)."""
     url = os.environ.get("EXPLORER_URL")
-    if url:
+    if url and root is None:
         yield url.rstrip("/")
         return
     port = free_port()
     log = tempfile.TemporaryFile("w+")
     cmd = [sys.executable, "-m", "app.serve", "--port", str(port)]
-    proc = subprocess.Popen(cmd, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT)
+    proc = subprocess.Popen(cmd, cwd=root or ROOT, stdout=log, stderr=subprocess.STDOUT)
     try:
         try:
             wait_for_http(f"http://127.0.0.1:{port}/liveness")
