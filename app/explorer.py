@@ -23,7 +23,6 @@ import numpy as np
 import panel as pn
 from panel.io import hold
 
-from app import browser
 from app.formulas import formulas
 from app.methods import MethodsScene
 from app.player import Player, frame_index, frame_taus
@@ -97,7 +96,8 @@ class Explorer:
 
         self._build_widgets()
         self.state.param.watch(self._on_params, ["psi", "tau0", "mu", "nu", "physical", "R",
-                                                 "G", "H", "u0", "h", "omega", "preset"])
+                                                 "G", "H", "u0", "h", "omega"])
+        self.state.param.watch(self._on_preset, ["preset"])
         self.state.param.watch(self._on_tau, ["tau"])
         self.state.param.watch(self._on_log, ["log_psi"])
         self.state.param.watch(self._on_playing, ["playing"])
@@ -126,9 +126,7 @@ class Explorer:
             for scene in self.scenes:
                 scene.update_contact(c)
                 scene.update_tau(c, tau)
-            preset = PRESETS.get(self.state.preset)
-            family = preset.family if preset else ()
-            self.force.set_family([Contact(p, c.tau0, mu=c.mu, nu=c.nu) for p in family])
+            self._show_family()
             self.tau_slider.param.update(start=c.tau0, end=c.tau_end, value=tau)
             self.readout.show(self.readout_rows(c))
             self._show_formulas(c, tau)
@@ -141,9 +139,6 @@ class Explorer:
     def _on_params(self, *events) -> None:
         if self._syncing:
             return
-        names = {e.name for e in events}
-        if names & {"psi", "tau0", "mu", "nu"} and "preset" not in names:
-            self._set_silently(preset="")
         try:
             c = self.state.contact()
         except ValueError as err:
@@ -159,8 +154,21 @@ class Explorer:
             updates["tau"] = tau
         self._set_silently(**updates)
         self.psi_slider.disabled = self.tau0_slider.disabled = self.state.physical
-        self.preset_select.value = self.state.preset
         self.refresh()
+
+    def _on_preset(self, event) -> None:
+        """The selector and the T(tau) family follow the state's preset ('' once left)."""
+        self.preset_select.value = event.new
+        with hold():
+            self._show_family()
+        self._write_url()
+
+    def _show_family(self) -> None:
+        """Overlay the T(tau) curves of the preset's psi family (Fig. 7), or none."""
+        c = self.contact
+        preset = PRESETS.get(self.state.preset)
+        family = preset.family if preset else ()
+        self.force.set_family([Contact(p, c.tau0, mu=c.mu, nu=c.nu) for p in family])
 
     @contextlib.contextmanager
     def _silently(self) -> Iterator[None]:
@@ -543,7 +551,6 @@ class Explorer:
         """Mark the page servable (the `panel serve` entry point calls this)."""
         page = self.view().servable()
         if pn.state.curdoc is not None:
-            browser.install(pn.state.curdoc)
             pn.state.on_session_destroyed(self.close)
         return page
 

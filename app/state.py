@@ -123,6 +123,19 @@ class ExplorerState(param.Parameterized):
                                          u0=self.u0, h=self.h, omega=self.omega)
         return Contact(self.psi, self.tau0, mu=self.mu, nu=self.nu)
 
+    def matches(self, name: str) -> bool:
+        """Whether the parameters on screen are those of preset `name`."""
+        p = PRESETS[name]
+        return not self.physical and (self.psi, self.tau0, self.mu, self.nu, self.tau) == (
+            p.psi, p.tau0, 0.2, 0.3, p.tau)
+
+    @param.depends("psi", "tau0", "mu", "nu", "tau", "physical", watch=True)
+    def _leave_preset(self) -> None:
+        """`preset` names the figure on screen: any other value of its parameters (a
+        slider, a typed value, a step, the animation, SI inputs) leaves it."""
+        if self.preset and not self.matches(self.preset):
+            self.preset = ""
+
     def apply_preset(self, name: str) -> None:
         """Load the parameters of preset `name` (a key of PRESETS); KeyError if unknown."""
         p = PRESETS[name]

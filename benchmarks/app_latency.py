@@ -10,10 +10,10 @@ Serves the app itself with `python -m app.serve` unless EXPLORER_URL is set.
 
     .venv/bin/python benchmarks/app_latency.py [--moves 30] [--seconds 5]
                                                [--width 1600] [--height 1400]
-                                               [--runs 1] [--compare REV]
+                                               [--runs 1] [--revs REV [REV ...]]
 
-`--compare REV` serves the checkout's git revision REV (a worktree in a temporary
-directory) beside the working tree and measures the two in alternation, `--runs` times
+`--revs A B` serves the git revisions A and B (each a worktree in a temporary
+directory) instead of the working tree and measures them in alternation, `--runs` times
 each (paired A/B: both arms see the same machine load).  The figures say how many plots
 were in the page's view (a tall page, --height 3200, has all of them in view).
 
@@ -189,14 +189,14 @@ def main() -> None:
     ap.add_argument("--width", type=int, default=1600)
     ap.add_argument("--height", type=int, default=1400)
     ap.add_argument("--runs", type=int, default=1, help="runs (per arm with --compare)")
-    ap.add_argument("--compare", metavar="REV", help="also measure git revision REV, paired")
+    ap.add_argument("--revs", nargs="+", metavar="REV",
+                    help="measure these git revisions (paired) instead of the working tree")
     args = ap.parse_args()
     before = machine_reference()
     size = (args.moves, args.seconds, args.width, args.height)
-    arms = {"working tree": None}
     with contextlib.ExitStack() as stack:
-        if args.compare:
-            arms[args.compare] = stack.enter_context(worktree(args.compare))
+        arms = ({rev: stack.enter_context(worktree(rev)) for rev in args.revs} if args.revs
+                else {"working tree": None})
         urls = {k: stack.enter_context(explorer_server(root)) for k, root in arms.items()}
         rows: dict[str, list] = {k: [] for k in arms}
         for i in range(args.runs):
@@ -204,7 +204,7 @@ def main() -> None:
             for k in order:
                 rows[k].append(measure(urls[k], *size))
     after = machine_reference()
-    shown, plots = rows["working tree"][0]["in_view"]
+    shown, plots = next(iter(rows.values()))[0]["in_view"]
     print(f"page {args.width}x{args.height}: {shown} of {plots} plots in view; "
           f"{args.moves} psi moves and {args.seconds:g} s of animation per run")
     for k, r in rows.items():

@@ -243,6 +243,30 @@ def test_presets_reproduce_the_papers_parameters(ex: Explorer, name: str) -> Non
         eq(ys, c.tangential_force(c.tau_grid(CURVE_POINTS)))
 
 
+def _type_tau(ex: Explorer) -> None:
+    ex.tau_slider._entry.value = "2.3"  # what a typed value does (the box's value)
+
+
+@pytest.mark.parametrize("change", [
+    _type_tau,
+    lambda ex: ex.step(),
+    lambda ex: ex.state.param.update(tau=ex.state.tau + 0.01),  # an animation tick's tau
+    lambda ex: ex.state.param.update(physical=True),
+    lambda ex: ex.state.param.update(mu=0.25),
+], ids=["typed tau", "step", "animation tau", "SI inputs", "mu"])
+def test_a_change_of_what_a_preset_sets_leaves_it_everywhere(ex: Explorer, change) -> None:
+    ex.preset_select.value = "fig7b"
+    assert ex.state.preset == "fig7b" and len(ex.force.family.data["ys"]) == 3
+    change(ex)
+    assert ex.state.preset == "" and ex.preset_select.value == ""
+    assert ex.force.family.data["ys"] == []  # the preset's family of curves goes with it
+    assert "preset" not in ex.state.query()
+    ex.log_box.value = True  # a view option is not a parameter: no preset to leave
+    ex.preset_select.value = "fig6e"
+    ex.log_box.value = False
+    assert ex.state.preset == "fig6e" == ex.preset_select.value
+
+
 def test_fig6_presets_walk_through_the_phases(ex: Explorer) -> None:
     phases = []
     for key in ("fig6a", "fig6b", "fig6c", "fig6d", "fig6e", "fig6f"):
