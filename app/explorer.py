@@ -25,9 +25,9 @@ from panel.io import hold
 
 from app.formulas import formulas
 from app.methods import MethodsScene
+from app.phases import STYLES
 from app.player import Player, frame_index, frame_taus
 from app.scenes import (
-    PHASE_COLORS,
     DiscScene,
     ForceScene,
     ImpulseScene,
@@ -39,7 +39,7 @@ from app.scenes import (
 )
 from app.state import PRESETS, ExplorerState, parse_query, parse_tau, parse_value
 from app.widgets import ExactSlider
-from core import Contact
+from core import Contact, Phase
 
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
 SLOW_UPDATE_S = 0.5  # while playing, the server moves scrubber and formulas this often (s)
@@ -48,8 +48,9 @@ URL_DELAY_S = 0.4  # the URL follows the parameters this long after the last cha
 
 #: Colour key of the contact disc (the figure has no legend, see DiscScene).
 DISC_KEY = " ".join(
-    f'<span style="color:{PHASE_COLORS[p]}; font-size: 1.3em">●</span> {name}'
-    for p, name in ((1, "stick"), (2, "slip"), (4, "counter-slip")))
+    f'<span style="color:{STYLES[p].color}; font-size: 1.3em">●</span> {name}'
+    for p, name in ((Phase.FULL_STICK, "stick"), (Phase.SLIP, "slip"),
+                    (Phase.COUNTER_SLIP, "counter-slip")))
 
 #: The warning box above the plots (rejected URL values).
 MESSAGE_STYLE = {"background": "#fff3cd", "color": "#664d03", "border": "1px solid #ffe69c",

@@ -7,25 +7,28 @@ the project's physics brief), shown beside the plots; nothing here is evaluated.
 
 from __future__ import annotations
 
+from core import PHASE_NAMES, Phase
+
 _COMMON = r"""
 $$p(r) = \frac{4G}{(1-\nu)\pi R}\sqrt{a^2 - r^2},\qquad a^2 = \tfrac{R}{2} H(\sin\tau - \sin\tau_0)$$
 """
 
-_PHASES: dict[int, tuple[str, str]] = {
-    0: ("No contact", r"""
+#: Per phase: when it holds and the equations (the phase's name comes from core).
+_PHASES: dict[Phase, tuple[str, str]] = {
+    Phase.NO_CONTACT: ("", r"""
 The spheres are apart (τ < τ₀ or τ > π − τ₀): no force.
 """),
-    1: ("Full stick (ψ ≤ 1; eqs 36, 38)", r"""
+    Phase.FULL_STICK: ("ψ ≤ 1; eqs 36, 38", r"""
 $$\tau_u(r) = \psi \mu p(r)$$
 
 $$T = \psi T_0 (\sin\tau - \sin\tau_0)^{3/2}$$
 """),
-    2: ("Slip while loading (τ₀ ≤ τ ≤ π/2; eqs 18, 39)", r"""
+    Phase.SLIP: ("while loading, τ₀ ≤ τ ≤ π/2; eqs 18, 39", r"""
 $$\tau_u(r) = \mu p(r)$$
 
 $$T = T_0 (\sin\tau - \sin\tau_0)^{3/2}$$
 """),
-    3: ("Partial stick (π/2 < τ < τ₁; eqs 24, 30, 39)", r"""
+    Phase.PARTIAL_STICK: ("π/2 < τ < τ₁; eqs 24, 30, 39", r"""
 $$\tau_u(r) = -\frac{4\mu G}{(1-\nu)\pi R}\left[\sqrt{a^2-r^2} - 2\sqrt{b^2-r^2}\right] \quad (r \le b)$$
 
 $$\tau_u(r) = -\mu p(r) \quad (b \lt r \lt a)$$
@@ -35,7 +38,7 @@ $$b^2 = \frac{\psi+1}{2} \frac{RH}{2} (\sin\tau - \sin\tau_1),\qquad
 
 $$T = T_0\left[2\left(\frac{\psi+1}{2}\right)^{3/2}(\sin\tau - \sin\tau_1)^{3/2} - (\sin\tau - \sin\tau_0)^{3/2}\right]$$
 """),
-    4: ("Counter-slip (τ₁ ≤ τ ≤ π − τ₀; eqs 33, 39)", r"""
+    Phase.COUNTER_SLIP: ("τ₁ ≤ τ ≤ π − τ₀; eqs 33, 39", r"""
 $$\tau_u(r) = -\mu p(r)$$
 
 $$T = -T_0 (\sin\tau - \sin\tau_0)^{3/2}$$
@@ -44,7 +47,10 @@ $$T = -T_0 (\sin\tau - \sin\tau_0)^{3/2}$$
 
 
 def formulas(phase: int) -> str:
-    """Markdown (with $$...$$ math) for the contact phase `phase` (core.Phase value)."""
-    title, body = _PHASES[int(phase)]
+    """Markdown (with $$...$$ math) for the contact phase `phase` (a core.Phase code)."""
+    phase = Phase(int(phase))
+    when, body = _PHASES[phase]
+    name = PHASE_NAMES[phase]
+    title = f"{name[0].upper()}{name[1:]}" + (f" ({when})" if when else "")
     common = _COMMON if phase else ""
     return f"**{title}**\n{body}{common}"

@@ -19,6 +19,7 @@ import numpy as np
 from bokeh.models import ColumnDataSource, CustomJS, Label
 from bokeh.plotting import figure as Figure
 
+from app.phases import style
 from app.scenes import CurveScene, DiscScene, TractionScene
 from core import Contact
 
@@ -106,14 +107,15 @@ class Player:
         self.profiles.data = {k: v.ravel() for k, v in self.traction.profiles(c, taus).items()}
         line = c.at(taus)
         phases = line.phase
-        styles = [TractionScene.phase_style(int(p)) for p in phases]
+        looks = [style(p) for p in phases]
         data = {
             "tau": taus, "a": line.contact_radius, "b": line.stick_radius,
             "phase": phases,
-            "disc_color": [DiscScene.slip_color(int(p)) for p in phases],
-            "disc_label": ["counter-slip" if p in (3, 4) else "slip" for p in phases],
+            "disc_color": [look.ring_color for look in looks],
+            "disc_label": [look.ring for look in looks],
             "caption": self.captions(c, taus),
-            **{k: [s[k] for s in styles] for k in ("title", "title_color")},
+            "title": [look.title for look in looks],
+            "title_color": [look.color for look in looks],
             **{f"{s.name}:{col}": v for s in self.curves for col, v in s.columns(c, taus).items()},
         }
         n = taus.size

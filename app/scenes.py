@@ -29,22 +29,14 @@ from bokeh.models import (
 )
 from bokeh.plotting import figure
 
+from app.phases import STICK_COLOR, style
 from app.wire import inline
-from core import PHASE_NAMES, Contact, Phase, impulse_ratio
+from core import Contact, impulse_ratio
 
 TOOLS = "pan,wheel_zoom,box_zoom,reset,save"
 CURVE_POINTS = 400  # points per curve over the contact: finer than any screen needs
 PROFILE_POINTS = 151  # points across the contact diameter for the traction profile
 
-#: One colour per contact phase (Okabe-Ito, colour-blind safe).
-PHASE_COLORS: dict[int, str] = {
-    int(Phase(0)): "#999999",  # no contact
-    int(Phase(1)): "#009E73",  # full stick
-    int(Phase(2)): "#E69F00",  # slip while loading
-    int(Phase(3)): "#56B4E9",  # partial stick (annulus: counter-slip)
-    int(Phase(4)): "#0072B2",  # counter-slip
-}
-STICK_COLOR = PHASE_COLORS[1]
 LINE_COLORS = ("#000000", "#D55E00", "#0072B2", "#CC79A7", "#009E73")
 #: Bokeh level of everything that changes on an animation frame or a slider move: the
 #: browser then repaints only the plot's overlay layer, not its axes, grid and legend
@@ -204,16 +196,11 @@ class TractionScene(Scene):
         return {"r": r, "traction": c.traction(r, t), "upper": p, "lower": -p,
                 "stick_lo": np.where(stick, -p, 0.0), "stick_hi": np.where(stick, p, 0.0)}
 
-    @staticmethod
-    def phase_style(phase: int) -> dict[str, str]:
-        """Title text and colour naming a phase."""
-        return {"title": f"Traction: {PHASE_NAMES[phase]}", "title_color": PHASE_COLORS[phase]}
-
     def update_tau(self, c: Contact, tau: float) -> None:
         self.source.data = inline({k: v[0] for k, v in self.profiles(c, np.array([tau])).items()})
-        style = self.phase_style(int(c.phase(tau)))
-        self.figure.title.text_color = style["title_color"]
-        self.figure.title.text = style["title"]  # changes once a phase
+        look = style(c.phase(tau))
+        self.figure.title.text_color = look.color
+        self.figure.title.text = look.title  # changes once a phase
 
 
 class DiscScene(Scene):
@@ -243,19 +230,12 @@ class DiscScene(Scene):
         self.figure.x_range.start, self.figure.x_range.end = -1.15 * a_max, 1.15 * a_max
         self.figure.y_range.start, self.figure.y_range.end = -1.15 * a_max, 1.15 * a_max
 
-    @staticmethod
-    def slip_color(phase: int) -> str:
-        """Colour of the annulus outside the stick disc: slip or counter-slip."""
-        return PHASE_COLORS[4 if phase == 3 else phase]
-
     def update_tau(self, c: Contact, tau: float) -> None:
         line = c.at(tau)
-        a, b, phase = float(line.contact_radius), float(line.stick_radius), int(line.phase)
-        slip = "counter-slip" if phase in (3, 4) else "slip"
+        a, b, look = float(line.contact_radius), float(line.stick_radius), style(line.phase)
         self.source.data = {
             "x": [0.0, 0.0], "y": [0.0, 0.0], "inner": [0.0, b], "outer": [b, a],
-            "color": [STICK_COLOR, self.slip_color(phase)],
-            "label": ["stick", slip],
+            "color": [STICK_COLOR, look.ring_color], "label": ["stick", look.ring],
         }
 
 
@@ -480,9 +460,9 @@ class ReadoutScene(Scene):
         fig.grid.visible = False
         fig.hspan("y", source=self.source, line_color="#dddddd", line_width=1,
                   level=FRAME_LEVEL)
-        for col, x, style in (("quantity", 0.02, "normal"), ("value", 0.58, "bold")):
+        for col, x, weight in (("quantity", 0.02, "normal"), ("value", 0.58, "bold")):
             fig.text(x, "y", text=col, source=self.source, text_baseline="top",
-                     text_font_size="13pt", text_font_style=style, y_offset=6,
+                     text_font_size="13pt", text_font_style=weight, y_offset=6,
                      level=FRAME_LEVEL)
         self.figure = fig
 

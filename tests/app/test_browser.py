@@ -19,8 +19,9 @@ from explorer_browser import (
     open_explorer,
 )
 
+from app.phases import style
 from app.scenes import CURVE_POINTS
-from app.state import ExplorerState, parse_query
+from app.state import PRESETS, ExplorerState, parse_query
 from core import Contact
 
 pytestmark = pytest.mark.browser
@@ -267,5 +268,79 @@ def test_legend_click_hides_the_curve(browser, url) -> None:
     page.wait_for_function(f"() => !({visible})()", timeout=5000)
     entry.click()
     page.wait_for_function(visible, timeout=5000)
+    assert errors(console) == []
+    page.close()
+
+
+#: The page box of the traction plot (the figure whose title starts "Traction").
+JS_TRACTION_BOX = """() => {
+  const v = __views((v) => v.model != null && v.model.type === "Figure"
+      && v.model.title != null && String(v.model.title.text).startsWith("Traction"))[0];
+  const r = v.el.getBoundingClientRect();
+  return {x: r.x, y: r.y, width: r.width, height: r.height, title: v.model.title.text};
+}"""
+
+
+def painted_title(page) -> tuple[str, bytes]:
+    """The traction plot's title as the model holds it, and the pixels of its title band."""
+    box = page.evaluate(JS_TRACTION_BOX)
+    clip = {"x": box["x"], "y": box["y"], "width": box["width"], "height": 40}
+    return box["title"], page.screenshot(clip=clip)
+
+
+def assert_title_painted(page, expected: str) -> None:
+    """The model's title is `expected` and the canvas shows it: the title band is the
+    same after the browser repaints every plot from scratch (a resize)."""
+    page.wait_for_function(f"() => ({JS_TRACTION_BOX})().title === {expected!r}",
+                           timeout=20_000)
+    page.wait_for_timeout(700)  # whatever the browser paints on its own is painted now
+    _, shown = painted_title(page)
+    size = page.viewport_size
+    page.set_viewport_size({"width": size["width"] - 40, "height": size["height"]})
+    page.wait_for_timeout(700)
+    page.set_viewport_size(size)
+    page.wait_for_timeout(1000)
+    _, fresh = painted_title(page)
+    assert shown == fresh, f"the canvas did not show the title {expected!r} until a resize"
+
+
+def title_of(psi: float, tau0: float, tau: float) -> str:
+    return style(Contact(psi, tau0).phase(tau)).title
+
+
+def test_the_traction_title_is_painted_after_psi_moves_into_counter_slip(browser, url) -> None:
+    page, console = open_explorer(browser, url)
+    box = page.locator("input.bk-input").nth(4)  # tau
+    box.fill("2.30")
+    box.press("Enter")
+    assert_title_painted(page, title_of(math.sqrt(2) + 1, math.pi / 6, 2.30))
+    page.locator(".noUi-handle").first.focus()  # psi
+    for _ in range(11):
+        page.keyboard.press("PageUp")
+        page.wait_for_timeout(150)
+    psi = settled(page, "impulse_marker", "psi")[0]
+    expected = title_of(psi, math.pi / 6, 2.30)
+    assert expected == "Traction: counter-slip", psi
+    assert_title_painted(page, expected)
+    assert errors(console) == []
+    page.close()
+
+
+@pytest.mark.parametrize("preset", ["fig6a", "fig6b", "fig6c"])
+def test_the_traction_title_is_painted_after_a_preset(browser, url, preset: str) -> None:
+    page, console = open_explorer(browser, url)
+    page.locator("select").first.select_option(label=PRESETS[preset].label)
+    p = PRESETS[preset]
+    assert_title_painted(page, title_of(p.psi, p.tau0, p.tau))
+    assert errors(console) == []
+    page.close()
+
+
+def test_the_traction_title_is_painted_after_a_typed_tau(browser, url) -> None:
+    page, console = open_explorer(browser, url)
+    box = page.locator("input.bk-input").nth(4)  # tau
+    box.fill("2.5")
+    box.press("Enter")
+    assert_title_painted(page, title_of(math.sqrt(2) + 1, math.pi / 6, 2.5))
     assert errors(console) == []
     page.close()

@@ -125,7 +125,7 @@ def test_tau_change_updates_only_tau_dependent_data(ex: Explorer) -> None:
     assert ex.force.source.data is force_data  # curves untouched by a tau change
     assert list(ex.force.marker.data["x"]) == [1.0] * 3  # markers and the tau cursor
     assert_sources_match_core(ex)
-    assert "Slip while loading" in ex.formulas.object
+    assert "Slip (while loading" in ex.formulas.object
 
 
 def test_tau_is_clamped_into_the_new_contact(ex: Explorer) -> None:

@@ -1,0 +1,50 @@
+"""How each contact phase looks: one table for every title, colour, disc and key.
+
+The phases and their names are `core.Phase` and `core.PHASE_NAMES`; which phase holds at
+a time is always `Contact.phase` (one rule, phase boundaries included).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from core import PHASE_NAMES, Phase
+
+
+@dataclass(frozen=True)
+class PhaseStyle:
+    """The look of one phase: its colour (the traction title, the disc's key), and the
+    name and colour of the disc's ring outside the stick disc (the whole disc slips
+    or counter-slips outside it)."""
+
+    name: str
+    color: str
+    ring: str
+    ring_color: str
+
+    @property
+    def title(self) -> str:
+        """The traction plot's title in this phase."""
+        return f"Traction: {self.name}"
+
+
+#: Okabe-Ito colours (colour-blind safe); the stick disc is always the full-stick green.
+_GREY, _GREEN, _ORANGE, _SKY, _BLUE = "#999999", "#009E73", "#E69F00", "#56B4E9", "#0072B2"
+
+STYLES: dict[Phase, PhaseStyle] = {
+    Phase.NO_CONTACT: PhaseStyle(PHASE_NAMES[Phase.NO_CONTACT], _GREY, "slip", _GREY),
+    Phase.FULL_STICK: PhaseStyle(PHASE_NAMES[Phase.FULL_STICK], _GREEN, "slip", _GREEN),
+    Phase.SLIP: PhaseStyle(PHASE_NAMES[Phase.SLIP], _ORANGE, "slip", _ORANGE),
+    Phase.PARTIAL_STICK: PhaseStyle(PHASE_NAMES[Phase.PARTIAL_STICK], _SKY, "counter-slip",
+                                    _BLUE),
+    Phase.COUNTER_SLIP: PhaseStyle(PHASE_NAMES[Phase.COUNTER_SLIP], _BLUE, "counter-slip",
+                                   _BLUE),
+}
+
+#: Colour of the stick disc.
+STICK_COLOR = STYLES[Phase.FULL_STICK].color
+
+
+def style(phase: int) -> PhaseStyle:
+    """The style of phase code `phase` (an int or a 0-d array from `Contact.phase`)."""
+    return STYLES[Phase(int(phase))]
