@@ -33,7 +33,14 @@ from numba import njit
 from numpy.typing import NDArray
 from scipy.special import ellipe, ellipk
 
-from core.numerics.loading import time_grid, trapezoid
+from core.numerics.loading import (
+    drive_grid,
+    one_minus_s0,
+    relative_drive,
+    rise,
+    time_grid,
+    trapezoid,
+)
 from core.numerics.result import ContactLike, check_resolution, contact_parameters
 
 NAME = "annulus"
@@ -287,6 +294,25 @@ def run(psi: float, tau0: float, tau: NDArray[np.float64], n: int
     delta = 0.5 * np.pi * psi * np.sin(tau) / (1.0 - s0)
     return march(_compliance(n), np.linspace(0.0, 1.0, n + 1), a_all, delta,
                  1.5 / np.pi * (1.0 - s0) ** 1.5)
+
+
+def moving(psi: float, tau0: float, v: float, n: int, steps: int
+           ) -> tuple[NDArray[np.float64], ...]:
+    """One contact under the drive relative to a rotor moving at V = v omega u0,
+    u_x0 = u0 sin tau - (V / omega)(tau - tau0) (``loading.relative_drive``), with n
+    rings over about ``steps`` time steps of ``loading.drive_grid`` (the grid of
+    ``mdr.moving``). v = 0 is eq 3. Arguments are not checked.
+
+    Returns (tau, T / T0, mu P / T0), P the exact Hertz force (eq 9).
+    """
+    tau = drive_grid(psi, tau0, v, steps)
+    c0 = one_minus_s0(tau0)
+    ap = np.maximum(rise(tau, tau0), 0.0)
+    ap[0] = ap[-1] = 0.0
+    delta = 0.5 * np.pi * psi / c0 * relative_drive(tau, tau0, v)
+    T, _ = march(_compliance(n), np.linspace(0.0, 1.0, n + 1), np.sqrt(ap / c0), delta,
+                 1.5 / np.pi * c0 ** 1.5)
+    return tau, T, ap ** 1.5
 
 
 def default_steps(n: int) -> int:

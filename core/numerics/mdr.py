@@ -39,7 +39,15 @@ import numpy as np
 from numba import njit
 from numpy.typing import ArrayLike, NDArray
 
-from core.numerics.loading import approach, time_grid, trapezoid
+from core.numerics.loading import (
+    approach,
+    drive_grid,
+    one_minus_s0,
+    relative_drive,
+    rise,
+    time_grid,
+    trapezoid,
+)
 from core.numerics.result import ContactLike, check_resolution, contact_parameters
 
 NAME = "mdr"
@@ -102,7 +110,12 @@ def march(x, d, drive, scale, u):
 
     u: spring displacements before the first step (updated in place; zero for a fresh
     contact). scale: factor from sum over springs to force (both halves of the row).
-    Returns (T, P, b): sum of u and of w_+ times scale, and the stick radius b / a*.
+    Returns (T, P, b, S): sum of u and of w_+ times scale, the stick radius b / a*, and
+    the slip work of each step, scale times the sum over sliding springs of the mean
+    Coulomb bound over the step, (w_+(start) + w(end)) / 2, times the slip (the part of
+    the trial displacement the bound cut off): the frictional dissipation in units of
+    T0 times the unit of u (exact for a spring that slides through the whole step with w
+    linear in time, second order otherwise).
     Every reversal of the drive should be a grid point (springs are then exact there).
     """
     nt = d.size
@@ -110,6 +123,7 @@ def march(x, d, drive, scale, u):
     T = np.zeros(nt)
     P = np.zeros(nt)
     b = np.zeros(nt)
+    S = np.zeros(nt)
     margin = np.empty(n)
     m_prev = 0
     while m_prev < n and u[m_prev] != 0.0:
@@ -128,6 +142,7 @@ def march(x, d, drive, scale, u):
             u[i] = 0.0
         t_sum = 0.0
         p_sum = 0.0
+        s_sum = 0.0
         for i in range(m):
             w = dk - x[i] * x[i]
             if i < m_prev:
@@ -137,20 +152,20 @@ def march(x, d, drive, scale, u):
                 frac = min(max(frac, 0.0), 1.0)
                 trial = drive[k] - (drive_prev + frac * du)
             margin[i] = w - abs(trial)
-            if trial > w:
-                trial = w
-            elif trial < -w:
-                trial = -w
+            if margin[i] < 0.0:  # slides: the bound cuts off |trial| - w
+                s_sum += 0.5 * (max(d_prev - x[i] * x[i], 0.0) + w) * (-margin[i])
+                trial = w if trial > 0.0 else -w
             u[i] = trial
             t_sum += trial
             p_sum += w
         T[k] = scale * t_sum
         P[k] = scale * p_sum
         b[k] = _stick_radius(x, margin, m, dk)
+        S[k] = scale * s_sum
         m_prev = m
         d_prev = dk
         drive_prev = drive[k]
-    return T, P, b
+    return T, P, b, S
 
 
 @njit(cache=True)
@@ -171,7 +186,7 @@ def contact(psi, tau0, n, steps):
     x = (np.arange(n) + 0.5) / n
     scale = 0.75 * (1.0 - s0) ** 1.5 * 2.0 / n
     u = np.zeros(n)
-    T, P, b = march(x, d, drive, scale, u)
+    T, P, b, _ = march(x, d, drive, scale, u)
     return tau, T, b, trapezoid(T, tau) / trapezoid(P, tau), u
 
 
@@ -185,8 +200,31 @@ def run(psi: float, tau0: float, tau: NDArray[np.float64], n: int
     d = approach(tau, tau0) / (1.0 - s0)
     drive = psi * np.sin(tau) / (1.0 - s0)
     u = np.zeros(n)
-    T, P, b = march(spring_positions(n), d, drive, 0.75 * (1.0 - s0) ** 1.5 * 2.0 / n, u)
+    T, P, b, _ = march(spring_positions(n), d, drive, 0.75 * (1.0 - s0) ** 1.5 * 2.0 / n, u)
     return T, P, b, u
+
+
+def moving(psi: float, tau0: float, v: float, n: int, steps: int
+           ) -> tuple[NDArray[np.float64], ...]:
+    """One contact under the drive relative to a rotor moving at V = v omega u0,
+    u_x0 = u0 sin tau - (V / omega)(tau - tau0) (``loading.relative_drive``), with N = n
+    springs over about ``steps`` time steps of ``loading.drive_grid`` (every reversal of
+    the drive, and every time a sliding spring can stick again, on the grid). v = 0 is
+    eq 3. Arguments are not checked (``core.motor.moving_rotor`` does).
+
+    Returns (tau, T / T0, mu P / T0, S): S the slip work of each step (``march``) in
+    units of T0 u0; T0 u0 times sum(S) is the frictional dissipation of the contact.
+    Approach and drive are formed from ``loading.rise`` and 1 - s0 = 2 sin^2(e / 2), so
+    that grazing contacts keep their digits.
+    """
+    tau = drive_grid(psi, tau0, v, steps)
+    c0 = one_minus_s0(tau0)
+    d = np.maximum(rise(tau, tau0), 0.0) / c0
+    d[0] = d[-1] = 0.0  # the contact window's ends, exactly
+    to_u = psi / c0  # u0 in the units of u (mu E* alpha* / G*)
+    drive = to_u * relative_drive(tau, tau0, v)
+    T, P, _, S = march(spring_positions(n), d, drive, 0.75 * c0 ** 1.5 * 2.0 / n, np.zeros(n))
+    return tau, T, P, S / to_u
 
 
 def solve(contact_: ContactLike, resolution: int, steps: int | None = None
