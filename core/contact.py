@@ -10,18 +10,22 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from core import hertz, tangential
-from core.clock import clock, half_width, one_minus_square
+from core import hertz, kernels, tangential
+from core.clock import half_sines
 from core.elliptic import impulse_factor
 from core.physical import PhysicalInputs, Scales
 from core.timeline import Timeline
-from core.validation import as_reals, check_param, shown
+from core.validation import DOMAIN, as_reals, check_param, common_shape, shown
 
 MAX_GRID = 10**8
-CHUNK = 1 << 16
-"""Times per pass of the functions of time on long arrays: 2**16 (512 kB per temporary)
-took a 1e6-point T / T0 from 45 to 25 ms on a 2-core VM (fresh multi-megabyte arrays
-cost page faults and memory traffic that dwarf the arithmetic)."""
+
+
+def _grid_size(n: object) -> int:
+    """n as an int if it is an integer in [2, MAX_GRID]; ValueError otherwise."""
+    if (isinstance(n, bool | np.timedelta64) or not isinstance(n, int | np.integer)
+            or not 2 <= n <= MAX_GRID):
+        raise ValueError(f"n must be an integer in [2, {MAX_GRID}], got {shown(n)}")
+    return operator.index(n)
 
 
 @dataclass(frozen=True)
@@ -82,8 +86,8 @@ class Contact:
     # ---- scalars -------------------------------------------------------------------
     @cached_property
     def _half_e(self) -> tuple[float, float]:
-        e = half_width(self.tau0)
-        return math.sin(e / 2), math.cos(e / 2)
+        """(sin(e/2), cos(e/2)), e = pi/2 - tau0 (``core.clock.half_sines``)."""
+        return half_sines(self.tau0)
 
     @property
     def tau_end(self) -> float:
@@ -118,42 +122,19 @@ class Contact:
     def impulse_ratio(self) -> float:
         """T_imp / (mu P_imp) (eq 41): psi for psi <= 1, largest (1) at psi = 1."""
         s, c = self._half_e
-        return float(tangential.impulse_ratio(self.psi, s, c))
+        return tangential.impulse_ratio_float(self.psi, s * s, c * c)
 
     # ---- time grid -------------------------------------------------------------------
     def tau_grid(self, n: int = 400) -> NDArray[np.float64]:
         """About n sorted times over [tau0, pi - tau0] that hold tau0, pi/2, tau1 and
         pi - tau0 exactly, with n/8 extra points in partial stick (short for large psi)."""
-        if (isinstance(n, bool | np.timedelta64) or not isinstance(n, int | np.integer)
-                or not 2 <= n <= MAX_GRID):
-            raise ValueError(f"n must be an integer in [2, {MAX_GRID}], got {shown(n)}")
-        n = operator.index(n)
-        half = n // 2  # pi/2 is the midpoint: uniform spacing over the whole contact
-        if self.psi <= 1.0:
-            ends, counts = [self.tau0, math.pi / 2, self.tau_end], [half, n - half]
-        else:  # unloading split at tau1; partial stick gets n/8 extra points
-            share = round((self.tau1 - math.pi / 2) / (self.tau_end - math.pi / 2) * (n - half))
-            ends = [self.tau0, math.pi / 2, self.tau1, self.tau_end]
-            counts = [half, share + max(n // 8, 8), n - half - share]
-        pieces = [(a, b, max(k, 1)) for a, b, k in zip(ends[:-1], ends[1:], counts, strict=True)
-                  if b > a]
-        # each piece as np.linspace(a, b, k, endpoint=False) computes it (a + i (b - a)/k),
-        # written into one array: linspace's own overhead was most of this method's cost
-        out = np.empty(sum(k for *_, k in pieces) + 1)
-        ramp = np.arange(max(k for *_, k in pieces), dtype=float)
-        pos = 0
-        for a, b, k in pieces:
-            piece = np.multiply(ramp[:k], (b - a) / k, out=out[pos:pos + k])
-            piece += a
-            pos += k
-        out[-1] = self.tau_end
-        return out
+        return kernels.tau_grid(self.psi, self.tau0, self.tau1, _grid_size(n))
 
     # ---- functions of time -----------------------------------------------------------
     def at(self, tau: ArrayLike) -> Timeline:
-        """Every quantity below at the times tau, computed on first use from one
-        evaluation of the contact clock (``core.timeline``): ask it for several
-        quantities on the same times rather than calling the methods one by one."""
+        """Every quantity below at the times tau, each computed on first use and kept
+        (``core.timeline``): ask it for several quantities on the same times rather than
+        calling the methods one by one."""
         return self._timeline(as_reals(tau, "tau"))
 
     def _timeline(self, tau: NDArray[np.float64]) -> Timeline:
@@ -161,16 +142,8 @@ class Contact:
         return Timeline(tau, self.psi, self._half_e[0])
 
     def _along(self, tau: ArrayLike, name: str) -> NDArray:
-        """Quantity ``name`` of ``at(tau)``; long arrays in chunks of CHUNK times, so that
-        the dozen temporaries of each chunk stay in the cache (same values, bit for bit)."""
-        tau = as_reals(tau, "tau")
-        if tau.size <= CHUNK:
-            return getattr(self._timeline(tau), name)
-        flat = tau.reshape(-1)
-        out = np.concatenate([getattr(self._timeline(flat[i:i + CHUNK]), name)
-                              for i in range(0, flat.size, CHUNK)]).reshape(tau.shape)
-        out.setflags(write=False)
-        return out
+        """Quantity ``name`` of ``at(tau)``."""
+        return getattr(self._timeline(as_reals(tau, "tau")), name)
 
     def phase(self, tau: ArrayLike) -> NDArray[np.int_]:
         """Phase code at each tau: 0 no contact, 1 full stick (psi <= 1), 2 slip while
@@ -207,15 +180,16 @@ class Contact:
     def pressure(self, r: ArrayLike, tau: ArrayLike) -> NDArray[np.float64]:
         """p / p* at radius r (units of a*) and time tau (eq 6); r broadcasts against tau."""
         r = self._radii(r)
-        w = clock(as_reals(tau, "tau"), self._half_e[0])
-        r, w = np.broadcast_arrays(r, w)
-        return hertz.pressure(r, one_minus_square(w))
+        r, a2 = np.broadcast_arrays(r, self._timeline(as_reals(tau, "tau")).approach)
+        return hertz.pressure(r, a2)
 
     def traction(self, r: ArrayLike, tau: ArrayLike) -> NDArray[np.float64]:
         """tau_u / (mu p*) on the upper sphere at radius r (units of a*) and time tau
         (eqs 18, 24, 33, 36); r broadcasts against tau."""
         r = self._radii(r)
-        return tangential.traction(r, clock(as_reals(tau, "tau"), self._half_e[0]), self.psi)
+        line = self._timeline(as_reals(tau, "tau"))
+        return tangential.traction(r, line.clock, line.approach, line.stick_radius_squared,
+                                   self.psi)
 
     def centre_displacement(self, tau: ArrayLike) -> NDArray[np.float64]:
         """u2 / u0, displacement of the contact centre of the upper sphere (eq 43)."""
@@ -236,18 +210,42 @@ class Contact:
         return np.cos(as_reals(tau, "tau"))
 
 
-def impulse_ratio(
-    psi: ArrayLike, tau0: float, mu: float = 0.2, nu: float = 0.3
-) -> NDArray[np.float64]:
-    """T_imp / (mu P_imp) (eq 41) for an array of psi at one tau0; the curve of Fig. 8.
 
-    Independent of mu and nu (accepted for symmetry with ``Contact``). psi is validated
-    element-wise: ints or floats in [0, 1e12] (TypeError for any other dtype, ValueError
-    naming the first element out of range, nan or inf).
+def impulse_ratio(
+    psi: ArrayLike, tau0: ArrayLike, mu: ArrayLike = 0.2, nu: ArrayLike = 0.3
+) -> NDArray[np.float64]:
+    """T_imp / (mu P_imp) (eq 41) element-wise over psi and tau0 (arrays broadcast; one
+    tau0 and many psi is the curve of Fig. 8).
+
+    Independent of mu and nu (accepted for symmetry with ``Contact``, validated and part
+    of the broadcast shape). Every argument is validated element-wise against
+    ``core.DOMAIN``: ints or floats (TypeError for any other dtype), ValueError naming the
+    first element out of range, nan or inf.
     """
-    tau0 = check_param("tau0", tau0)
-    check_param("mu", mu)
-    check_param("nu", nu)
-    psi = as_reals(psi, "psi")
-    e = half_width(tau0)
-    return tangential.impulse_ratio(psi, math.sin(e / 2), math.cos(e / 2))
+    psi, tau0 = as_reals(psi, "psi"), as_reals(tau0, "tau0")
+    shape = common_shape(psi=psi, tau0=tau0, mu=as_reals(mu, "mu"), nu=as_reals(nu, "nu"))
+    if tau0.ndim == 0:  # one contact shape: m0 and mc0 as floats
+        s, c = half_sines(float(tau0))
+        m0, mc0 = s * s, c * c
+    else:
+        s, c = kernels.half_sines_of(np.ascontiguousarray(tau0))
+        m0, mc0 = s * s, c * c
+    out = np.asarray(tangential.impulse_ratio(psi, m0, mc0))
+    return out if out.shape == shape else np.broadcast_to(out, shape).copy()
+
+
+_PSI, _TAU0 = DOMAIN["psi"].closed_bounds, DOMAIN["tau0"].closed_bounds
+
+
+def curve(psi: float, tau0: float, n: int = 200) -> tuple[NDArray[np.float64], float]:
+    """One contact in one compiled call: (rows, ratio) with rows = (tau, T / T0, b / a*)
+    on ``Contact(psi, tau0).tau_grid(n)`` (a 3 x ~n array) and ratio = T_imp / (mu P_imp)
+    (eq 41). The same values, bit for bit, as ``Contact``'s; psi, tau0 and n are checked
+    as there (a float in range takes a fast path)."""
+    if not (type(psi) is float and _PSI[0] <= psi <= _PSI[1]):
+        psi = check_param("psi", psi)
+    if not (type(tau0) is float and _TAU0[0] <= tau0 <= _TAU0[1]):
+        tau0 = check_param("tau0", tau0)
+    if not (type(n) is int and 2 <= n <= MAX_GRID):
+        n = _grid_size(n)
+    return kernels.curve(psi, tau0, n)

@@ -24,64 +24,67 @@ the whole domain, m from 1e-300 to 1 - 1e-17 (tests/core/test_elliptic.py).
 
 from __future__ import annotations
 
+import math
+
+import llvmlite.binding as llvm
 import numpy as np
+from numba import float64, njit, types, vectorize
+from numba.extending import get_cython_function_address
 from numpy.typing import ArrayLike, NDArray
-from scipy.special import ellipe, ellipkm1
 
 SERIES_LIMIT = 0.2
 _N_TERMS = 24
 
+# scipy's own ellipe and ellipkm1 (cephes), called from compiled code by symbol name, so
+# that the kernels that use them can be cached on disk
+for _name in ("ellipe", "ellipkm1"):
+    llvm.add_symbol(f"zharii_{_name}",
+                    get_cython_function_address("scipy.special.cython_special", _name))
+_ellipe = types.ExternalFunction("zharii_ellipe", float64(float64))
+_ellipkm1 = types.ExternalFunction("zharii_ellipkm1", float64(float64))
 
-def _series_coefficients(n: int) -> NDArray[np.float64]:
-    """Coefficients of 2F1(1/2, 1/2; 3; m) = sum c_k m^k, times 3 pi / 16."""
-    c = np.empty(n)
-    c[0] = 3.0 * np.pi / 16.0
+
+def _series_coefficients(n: int) -> tuple[float, ...]:
+    """Coefficients of 2F1(1/2, 1/2; 3; m) = sum c_k m^k, times 3 pi / 16, highest first."""
+    c = [3.0 * math.pi / 16.0]
     for k in range(n - 1):
-        c[k + 1] = c[k] * (k + 0.5) ** 2 / ((k + 3.0) * (k + 1.0))
-    return c
+        c.append(c[k] * (k + 0.5) ** 2 / ((k + 3.0) * (k + 1.0)))
+    return tuple(c[::-1])
 
 
-_COEFFS = _series_coefficients(_N_TERMS)
-_COEFFS_REVERSED = tuple(float(c) for c in _COEFFS[::-1])
+_COEFFS_REVERSED = _series_coefficients(_N_TERMS)
 
 
+@njit(cache=True)
 def quartic_integral_float(m: float, mc: float) -> float:
-    """J(m) for one float m: the same two branches without array overhead."""
+    """J(m) for one float m, with mc = 1 - m given (see ``quartic_integral``)."""
     if m < SERIES_LIMIT:
         acc = 0.0
         for c in _COEFFS_REVERSED:
             acc = acc * m + c
         return acc
-    k, e = float(ellipkm1(mc)), float(ellipe(m))
+    k, e = _ellipkm1(mc), _ellipe(m)
     return (2.0 * (2.0 * m - 1.0) * e + mc * (2.0 - 3.0 * m) * k) / (3.0 * m * m)
 
 
+@vectorize([float64(float64, float64)], cache=True)
+def _quartic_integral(m: float, mc: float) -> float:
+    return quartic_integral_float(m, mc)
+
+
+@vectorize([float64(float64, float64)], cache=True)
+def _impulse_factor(m: float, mc: float) -> float:
+    return 12.0 * m * m * quartic_integral_float(m, mc)
+
+
 def quartic_integral(m: ArrayLike, mc: ArrayLike | None = None) -> NDArray[np.float64]:
-    """J(m) = int_0^{pi/2} cos^4 phi / sqrt(1 - m sin^2 phi) dphi, for 0 <= m <= 1.
+    """J(m) = int_0^{pi/2} cos^4 phi / sqrt(1 - m sin^2 phi) dphi, for 0 <= m <= 1
+    (arrays broadcast).
 
     ``mc`` is 1 - m; pass it whenever m is close to 1 (it is computed as 1 - m otherwise).
     """
-    if np.ndim(m) == 0 and (mc is None or np.ndim(mc) == 0):
-        mf = float(m)
-        return np.asarray(quartic_integral_float(mf, 1.0 - mf if mc is None else float(mc)))
     m = np.asarray(m, dtype=float)
-    mc = 1.0 - m if mc is None else np.asarray(mc, dtype=float)
-    m, mc = np.broadcast_arrays(m, mc)
-    out = np.empty(m.shape)
-    small = m < SERIES_LIMIT
-    if small.any():
-        ms = m[small]
-        acc = np.full(ms.shape, _COEFFS[-1])
-        for c in _COEFFS[-2::-1]:
-            acc *= ms
-            acc += c
-        out[small] = acc
-    big = ~small
-    if big.any():
-        mb, mcb = m[big], mc[big]
-        k, e = ellipkm1(mcb), ellipe(mb)
-        out[big] = (2.0 * (2.0 * mb - 1.0) * e + mcb * (2.0 - 3.0 * mb) * k) / (3.0 * mb * mb)
-    return out
+    return np.asarray(_quartic_integral.ufunc(m, 1.0 - m if mc is None else mc))
 
 
 def impulse_factor(m: ArrayLike, mc: ArrayLike | None = None) -> NDArray[np.float64]:
@@ -91,4 +94,4 @@ def impulse_factor(m: ArrayLike, mc: ArrayLike | None = None) -> NDArray[np.floa
     e = pi/2 - tau0; F(tau1) is the same with tau1 in place of tau0.
     """
     m = np.asarray(m, dtype=float)
-    return 12.0 * m * m * quartic_integral(m, mc)
+    return np.asarray(_impulse_factor.ufunc(m, 1.0 - m if mc is None else mc))

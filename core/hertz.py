@@ -9,26 +9,37 @@ with e = pi/2 - tau0; 1 - sin tau0 = 2 s^2.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+from numba import njit
 from numpy.typing import ArrayLike, NDArray
 
-SQRT8 = 2.0 * np.sqrt(2.0)
+SQRT8 = 2.0 * math.sqrt(2.0)
 
 
-def cube(a2: NDArray[np.float64]) -> NDArray[np.float64]:
+@njit(cache=True, inline="always")
+def cube(a2: float) -> float:
     """(a2)^(3/2) without the cost of a general power."""
-    out = np.sqrt(a2, out=np.empty_like(a2))
-    out *= a2
-    return out
+    return a2 * math.sqrt(a2)
 
 
-def normal_force(a3: NDArray[np.float64], sin_half_e: float) -> NDArray[np.float64]:
-    """P / P0 = (sin tau - sin tau0)^(3/2) = (2 s^2)^(3/2) (a/a*)^3 (eq 9), from a3 = (a/a*)^3."""
-    return (SQRT8 * sin_half_e**3) * a3
+@njit(cache=True, inline="always")
+def force_scale(sin_half_e: float) -> float:
+    """(1 - sin tau0)^(3/2) = (2 s^2)^(3/2) = sqrt(8) s^3: P / P0 at a = a* (eq 9), and
+    the factor of every T / T0 (eqs 38, 39)."""
+    return SQRT8 * sin_half_e**3
+
+
+@njit(cache=True, inline="always")
+def normal_force(a3: float, scale: float) -> float:
+    """P / P0 = (sin tau - sin tau0)^(3/2) = scale (a/a*)^3 (eq 9), from a3 = (a/a*)^3 and
+    scale = ``force_scale``."""
+    return scale * a3
 
 
 def pressure(r: ArrayLike, a2: ArrayLike) -> NDArray[np.float64]:
     """p / p* = sqrt(a2 - r^2) inside the contact, 0 outside (eq 6); r in units of a*,
-    a2 = (a / a*)^2."""
+    a2 = (a / a*)^2 (arrays, broadcast)."""
     r = np.asarray(r, dtype=float)
     return np.sqrt(np.maximum(np.asarray(a2) - r * r, 0.0))

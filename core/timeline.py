@@ -1,10 +1,10 @@
-"""One contact at an array of times: every quantity from a single evaluation of the clock.
+"""One contact at an array of times: each quantity computed on first use, kept for reuse.
 
-``Contact.at(tau)`` returns a ``Timeline``. Its quantities are computed on first use and
-share their intermediates: the clock w (one sine per time), the squared contact radius
-a^2 = (1 - w)(1 + w), a^3, the squared stick radius b^2 and the phase. A plot of T and b
-on one grid therefore costs one clock instead of two (``Contact``'s single-quantity
-methods are this class used once).
+``Contact.at(tau)`` returns a ``Timeline``. Each quantity of eqs 6-43 is one compiled
+pass over the times (``core.kernels.rows``: the clock w, one sine per time, and the
+formulas of w fused, without temporaries); the centre's motion is derived from the
+clock, a^2 and the phase already computed. ``Contact``'s single-quantity methods are
+this class used once.
 
 Units as in ``Contact``: forces in T0 (eq 37) or P0 = T0 / mu, radii in a*, displacement
 in u0, velocity in omega u0. Arrays have the shape of tau, are zero (never nan) outside
@@ -19,8 +19,7 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
-from core import hertz, kinematics, tangential
-from core.clock import clock, one_minus_square
+from core import kernels, kinematics
 
 
 def _fixed(a: NDArray) -> NDArray:
@@ -33,7 +32,8 @@ def _fixed(a: NDArray) -> NDArray:
 
 @dataclass(frozen=True, eq=False)
 class Timeline:
-    """The contact (psi, s = sin(e/2) of ``core.clock``) at the times ``tau`` (radians).
+    """The contact (psi, s = sin(e/2) of ``core.clock``) at the times ``tau`` (radians, a
+    float64 array).
 
     ``tau`` is held, not copied: change it and ask again, and the quantities already
     computed will not follow (make a new Timeline instead)."""
@@ -42,53 +42,54 @@ class Timeline:
     psi: float
     sin_half_e: float
 
+    def _pass(self, q: int) -> NDArray[np.float64]:
+        """Quantity code q of ``core.kernels`` at every time, as a read-only array."""
+        tau = np.ascontiguousarray(self.tau).reshape(1, -1)
+        out = np.empty(self.tau.shape)
+        kernels.rows(q, tau, np.array([self.psi]), np.array([self.sin_half_e]),
+                     out.reshape(1, -1))
+        return _fixed(out)
+
     @cached_property
     def clock(self) -> NDArray[np.float64]:
         """w = sin((tau - pi/2)/2) / sin(e/2): -1 at tau0, 0 at pi/2, +1 at pi - tau0."""
-        return _fixed(clock(self.tau, self.sin_half_e))
+        return self._pass(kernels.CLOCK)
 
     @cached_property
     def phase(self) -> NDArray[np.int_]:
         """Phase code (``core.Phase``): 0 no contact, 1 full stick, 2 slip, 3 partial
         stick, 4 counter-slip."""
-        return _fixed(tangential.phase(self.clock, self.psi))
+        return _fixed(self._pass(kernels.PHASE).astype(int))
 
     @cached_property
     def approach(self) -> NDArray[np.float64]:
         """alpha / (H - h) = (sin tau - sin tau0) / (1 - sin tau0) (eq 8); equals a^2 / a*^2."""
-        return _fixed(one_minus_square(self.clock))
+        return self._pass(kernels.APPROACH)
 
     @cached_property
     def contact_radius(self) -> NDArray[np.float64]:
         """a / a* (eqs 7, 8)."""
-        return _fixed(np.sqrt(self.approach))
+        return self._pass(kernels.CONTACT_RADIUS)
 
     @cached_property
-    def _a3(self) -> NDArray[np.float64]:
-        return _fixed(hertz.cube(self.approach))
-
-    @cached_property
-    def _b2(self) -> NDArray[np.float64]:
-        if self.psi <= 1.0:  # full stick: b = a
-            return self.approach
-        return _fixed(tangential.stick_radius_squared(self.clock, self.psi))
+    def stick_radius_squared(self) -> NDArray[np.float64]:
+        """(b / a*)^2 (eq 30)."""
+        return self._pass(kernels.STICK_RADIUS_SQUARED)
 
     @cached_property
     def stick_radius(self) -> NDArray[np.float64]:
         """b / a* (eq 30): a in full stick, the stick disc in partial stick, else 0."""
-        return _fixed(np.sqrt(self._b2))
+        return self._pass(kernels.STICK_RADIUS)
 
     @cached_property
     def normal_force(self) -> NDArray[np.float64]:
         """P / P0 = (sin tau - sin tau0)^(3/2) (eq 9); also mu P / T0."""
-        return _fixed(hertz.normal_force(self._a3, self.sin_half_e))
+        return self._pass(kernels.NORMAL_FORCE)
 
     @cached_property
     def tangential_force(self) -> NDArray[np.float64]:
         """T / T0 (eqs 38, 39): force on the upper sphere, positive along the drive."""
-        b3 = None if self.psi <= 1.0 else hertz.cube(self._b2)
-        return _fixed(tangential.tangential_force(self._a3, b3, self.clock, self.psi,
-                                                  self.sin_half_e))
+        return self._pass(kernels.TANGENTIAL_FORCE)
 
     @cached_property
     def centre_displacement(self) -> NDArray[np.float64]:

@@ -67,6 +67,16 @@ class Interval:
             ok &= np.less(x, self.hi) if self.hi_open else np.less_equal(x, self.hi)
         return ok
 
+    @property
+    def closed_bounds(self) -> tuple[float, float]:
+        """(lo, hi) such that a float x is inside exactly when lo <= x <= hi: open ends
+        moved inward by one ulp, infinite ends as -inf, inf (then also check finiteness)."""
+        lo = -math.inf if self.lo is None else (
+            math.nextafter(self.lo, math.inf) if self.lo_open else self.lo)
+        hi = math.inf if self.hi is None else (
+            math.nextafter(self.hi, -math.inf) if self.hi_open else self.hi)
+        return lo, hi
+
     def contains(self, x: float) -> bool:
         """True when x is a real number (not a bool) inside the interval."""
         v = _as_float(x)
@@ -159,3 +169,13 @@ def as_reals(x: ArrayLike, name: str) -> NDArray[np.float64]:
         first = np.unravel_index(np.flatnonzero(~domain._holds(a))[0], a.shape)
         domain.check(f"{name}[{', '.join(str(int(i)) for i in first)}]", a[first])
     return a
+
+
+def common_shape(**arrays: NDArray) -> tuple[int, ...]:
+    """The shape the named arrays broadcast to; ValueError naming each with its shape if
+    they do not broadcast together."""
+    try:
+        return np.broadcast_shapes(*(a.shape for a in arrays.values()))
+    except ValueError:
+        listed = ", ".join(f"{name} {a.shape}" for name, a in arrays.items())
+        raise ValueError(f"the shapes of {listed} do not broadcast together") from None

@@ -7,9 +7,9 @@ psi(x0) and tau0(x0), one contact per period 2 pi / omega, so the mean force is
 
 times the direction of the drive, sign u0(x0). T_imp / (mu P_imp) is eq 41, evaluated by
 ``core.tangential`` (one source of truth): psi for psi <= 1, k J(k^2 m0) / J(m0) with
-k^2 = 2 / (psi + 1) and m0 = (1 - sin tau0) / 2 above. ``core.contact.impulse_ratio``
-takes one tau0 for many psi (the curve of Fig. 8); along the rod tau0 changes from point
-to point, so this module applies core's elementwise form to both arrays.
+k^2 = 2 / (psi + 1) and m0 = (1 - sin tau0) / 2 above. The preload solve gives m0 and
+mc0 = 1 - m0 directly (more digits than tau0 near grazing), so this module calls core's
+element-wise form of m0, ``core.tangential.impulse_ratio``, on both arrays.
 See docs/physics.md, section 10.3.
 """
 
@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from core.tangential import _ratio_above_one
+from core import tangential
 
 
 def impulse_ratio(
@@ -27,11 +27,10 @@ def impulse_ratio(
     """T_imp / (mu P_imp) (eq 41, dimensionless, in [0, 1]) elementwise over arrays of psi
     and of m0 = (1 - sin tau0) / 2, mc0 = 1 - m0 (same shape); nan where m0 is nan (the
     contact never opens)."""
-    out = np.where(np.isnan(m0), np.nan, psi)
-    big = (psi > 1.0) & ~np.isnan(m0)
-    if big.any():
-        out[big] = _ratio_above_one(psi[big], m0[big], mc0[big])
-    return out
+    opens = ~np.isnan(m0)  # elsewhere psi may be inf: no arithmetic on it
+    ratio = tangential.impulse_ratio(np.where(opens, psi, 0.0), np.where(opens, m0, 0.0),
+                                     np.where(opens, mc0, 1.0))
+    return np.where(opens, ratio, np.nan)
 
 
 def stall_thrust(

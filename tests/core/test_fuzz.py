@@ -227,7 +227,7 @@ def test_impulse_ratio(args: dict[str, object]) -> None:
     out = attempt(lambda: impulse_ratio(**args), tuple(PARAMS))
     if out is None:
         return
-    assert_numbers(out, np.shape(args["psi"]))
+    assert_numbers(out, np.broadcast_shapes(*(np.shape(args[name]) for name in PARAMS)))
     assert ((0.0 <= out) & (out <= 1.0 + 1e-15)).all()
 
 
