@@ -7,7 +7,8 @@ contact, and (``core.numerics``) independent numerical methods for the same prob
     0.75
 """
 
-from core.contact import Contact, impulse_ratio
+from core import batch
+from core.contact import Contact, curve, impulse_ratio
 from core.coulomb import CoulombReport, coulomb_certificate
 from core.physical import MATERIALS, PhysicalInputs, Scales
 from core.tangential import PHASE_NAMES, Phase
@@ -24,6 +25,8 @@ __all__ = [
     "Phase",
     "PhysicalInputs",
     "Scales",
+    "batch",
     "coulomb_certificate",
+    "curve",
     "impulse_ratio",
 ]
