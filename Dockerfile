@@ -84,3 +84,8 @@ CMD []
 USER 10001:10001
 COPY --from=deps /opt/venv /opt/venv
 COPY --from=pkg /opt/zharii /opt/zharii
+# The closed form's numba kernels compiled into the cache the server uses
+# (NUMBA_CACHE_DIR above, as user 10001): its first call then loads them (tens of ms)
+# instead of compiling (seconds).  The server also warms them in a background thread
+# at start-up, which recompiles them where /tmp is a fresh tmpfs or the CPU differs.
+RUN python -m core.warm

@@ -30,6 +30,7 @@ import logging
 import re
 import secrets
 import sys
+import threading
 from pathlib import Path
 
 from tornado.web import GZipContentEncoding, OutputTransform
@@ -131,6 +132,8 @@ def main(argv: list[str] | None = None) -> None:
     """Serve the explorer at /main (and / redirecting there) until interrupted."""
     from panel.io.server import get_server
 
+    from core.warm import warm
+
     args = parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(levelname)s %(message)s")
     log = logging.getLogger("app.serve")
@@ -140,6 +143,8 @@ def main(argv: list[str] | None = None) -> None:
     log.info("explorer at http://%s:%d%s/main (websocket origins: %s)", args.address,
              args.port, args.prefix, ", ".join(args.allow_websocket_origin))
     server.start()
+    # load the closed form's compiled kernels (core.warm) without delaying the first page
+    threading.Thread(target=warm, name="warm-kernels", daemon=True).start()
     server.io_loop.start()
 
 
