@@ -3,8 +3,9 @@
 Every method computes one contact from its two parameters (psi, tau0): T / T0 on its
 own times and the impulse ratio T_imp / (mu P_imp) (eq 41). Peers: the time-stepping
 methods of ``core.numerics`` (MDR, annulus, the DEM rules), each a numba kernel called
-once per contact from Python with scalar arguments. The closed form: ``core.Contact``
-(numpy), built from (psi, tau0), T and b on ``tau_grid(200)`` and the impulse ratio.
+once per contact from Python with scalar arguments. The closed form: ``core.curve``
+(what users call for one contact: one compiled call from (psi, tau0)), T and b on
+``Contact.tau_grid(200)`` and the impulse ratio.
 Quadrature of the closed-form T (``quad``, ``gauss_legendre``) is a check of eq 41, not a
 peer: it needs the closed form to run, and is reported apart.
 
@@ -52,7 +53,7 @@ import numpy as np  # noqa: E402
 from results_csv import read_csv, write_csv  # noqa: E402
 from tqdm import tqdm  # noqa: E402
 
-from core import Contact  # noqa: E402
+from core import Contact, curve  # noqa: E402
 from core.numerics import MethodResult, Params, annulus, dem, mdr, quadrature  # noqa: E402
 from core.numerics.metrics import errors  # noqa: E402
 
@@ -96,10 +97,8 @@ def regime(psi: float, tau0: float) -> str:
 
 def closed_form(psi: float, tau0: float):
     """One contact by core's closed form, from (psi, tau0): T, b on 200 points, impulse."""
-    c = Contact(psi, tau0)
-    tau = c.tau_grid(CLOSED_FORM_POINTS)
-    line = c.at(tau)  # one clock evaluation for T and b
-    return tau, line.tangential_force, line.stick_radius, c.impulse_ratio
+    (tau, T, b), ratio = curve(psi, tau0, CLOSED_FORM_POINTS)
+    return tau, T, b, ratio
 
 
 def job(name: str, psi: float, tau0: float, resolution: int, steps: int | None
@@ -211,7 +210,11 @@ from numba import njit
 t0 = time.perf_counter()
 njit(lambda x: x + 1.0)(1.0)
 out["numba start-up (a trivial function)"] = time.perf_counter() - t0
+from core import batch, curve, impulse_ratio
 calls = {
+    "closed form (core.curve, core.batch, core.impulse_ratio)": lambda: (
+        curve(2.0, 0.3, 8), batch.tangential_force(2.0, 0.3, [1.0]),
+        impulse_ratio([2.0], 0.3)),
     "mdr": lambda: mdr.contact(2.0, 0.3, 8, 8),
     "annulus": lambda: annulus.contact(2.0, 0.3, annulus._compliance(4), 16),
     "dem (all seven rules)": lambda: dem.contact(0, 2.0, 0.3, 10),
@@ -319,7 +322,8 @@ def markdown(rows: list[dict], compile_info: dict | None) -> str:
     lines = ["# Speed against accuracy, like for like", "",
              "One contact from (psi, tau0): T on the method's own times and the impulse "
              "ratio. Peers: numba kernels (MDR, annulus, DEM rules) called from Python; "
-             "closed form: core's numpy `Contact` (T and b on 200 points, impulse ratio). "
+             "closed form: `core.curve` (one compiled call: T and b on 200 points, impulse "
+             "ratio). "
              f"Every time is the best of {REPEATS} windows of at least {WINDOW * 1e3:g} ms "
              "of repeated calls, after a warm-up call. ratio = time of the fastest peer "
              "reaching the target / time of the closed form, same case, same run "
@@ -495,7 +499,7 @@ def chart(rows: list[dict], path: Path) -> None:
                       fill_color="white", line_width=2)
     main.text("x", "y", text="run", source=cf_src, x_offset=14, y_offset=-4,
               text_font_size="10pt", text_font_style="bold")
-    items.insert(0, LegendItem(label="closed form (core, numpy)", renderers=[cf]))
+    items.insert(0, LegendItem(label="closed form (core.curve)", renderers=[cf]))
     legend = Legend(items=items, click_policy="hide", label_text_font_size="9pt")
     main.add_layout(legend, "right")
     check, check_src, check_items = make("Check of eq 41: quadrature of core's T (needs "
@@ -539,7 +543,8 @@ cf_src.data = cf[this.value];
     intro = Div(width=1100, text=(
         "<p>One contact from (psi, tau0): T on the method's own times and the impulse ratio. "
         "Peers are numba kernels called from Python (compile time excluded); the closed "
-        "form is core's numpy <code>Contact</code> (T and b on 200 points, impulse ratio). "
+        "form is <code>core.curve</code> (one compiled call: T and b on 200 points, impulse "
+        "ratio). "
         f"Same timing for all: best of {REPEATS} windows of at least {WINDOW * 1e3:g} ms. "
         "Lines: each method's Pareto front (no faster run of it is more accurate); faint "
         "markers: every run. Errors against core (the closed form's own error against "
