@@ -8,6 +8,8 @@ p_loss = v exactly, from ``full_slip_speed`` on)."""
 from __future__ import annotations
 
 import math
+import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -237,3 +239,32 @@ def test_curve_and_point_functions_validate() -> None:
         no_load_speed(2.0, 2.0)
     with pytest.raises(ValueError, match=r"mu = -0\.2 is outside"):
         best_efficiency(2.0, 0.1, mu=-0.2)
+
+
+# ---- the README's Motor example ----------------------------------------------------------
+def test_readme_motor_example_runs_and_its_figures_hold() -> None:
+    text = (Path(__file__).resolve().parents[2] / "README.md").read_text()
+    section = text[text.index("### Motor"):]
+    code = re.search(r"```python\n(.*?)```", section, flags=re.S).group(1)
+    ns: dict = {}
+    exec(compile(code, "README.md (Motor)", "exec"), ns)
+    assert (round(ns["psi"], 3), round(ns["tau0"], 3)) == (1.361, 0.528)
+    assert round(ns["v0"], 3) == 0.368
+    best = ns["best"]
+    assert (round(best.v, 3), round(best.efficiency, 3), round(best.thrust_ratio, 3)) == (
+        0.120, 0.694, 0.729)
+    assert round(ns["speed"], 4) == 0.0395
+    m, speed = ns["m"], ns["speed"]
+    # the table: stall thrust (mN), no-load speed (mm/s), best efficiency at (mm/s, mN)
+    rows = {-0.2e-3: (9.17, 14.5, 69.4, 4.75, 7.29), -10e-3: (1.47, 179, 1.0, 89, 0.74)}
+    for x0, (stall, v0_mm, eta_pc, v_best_mm, thrust_best) in rows.items():
+        psi, tau0 = float(m.psi(x0)), float(m.tau0(x0))
+        speed = m.rod.omega * abs(float(m.rod.u0(x0)))
+        mu_n = m.mu * m.preload * 1e3  # mN
+        b = best_efficiency(psi, tau0)
+        assert float(moving_rotor(psi, tau0, 0.0).thrust_ratio) * mu_n == pytest.approx(
+            stall, abs=0.006)
+        assert no_load_speed(psi, tau0) * speed * 1e3 == pytest.approx(v0_mm, rel=4e-3)
+        assert b.efficiency * 100 == pytest.approx(eta_pc, abs=0.06)
+        assert b.v * speed * 1e3 == pytest.approx(v_best_mm, rel=0.01)
+        assert b.thrust_ratio * mu_n == pytest.approx(thrust_best, abs=0.006)
