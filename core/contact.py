@@ -224,13 +224,13 @@ def impulse_ratio(
     """
     psi, tau0 = as_reals(psi, "psi"), as_reals(tau0, "tau0")
     shape = common_shape(psi=psi, tau0=tau0, mu=as_reals(mu, "mu"), nu=as_reals(nu, "nu"))
-    if tau0.ndim == 0:  # one contact shape: m0 and mc0 as floats
+    if tau0.ndim == 0:  # one tau0 (the curve of Fig. 8): J(m0) once
         s, c = half_sines(float(tau0))
-        m0, mc0 = s * s, c * c
+        out = tangential.impulse_ratio_of_psis(np.ascontiguousarray(psi), s * s,
+                                               c * c).reshape(psi.shape)
     else:
         s, c = kernels.half_sines_of(np.ascontiguousarray(tau0))
-        m0, mc0 = s * s, c * c
-    out = np.asarray(tangential.impulse_ratio(psi, m0, mc0))
+        out = np.asarray(tangential.impulse_ratio(psi, s * s, c * c))
     return out if out.shape == shape else np.broadcast_to(out, shape).copy()
 
 

@@ -137,9 +137,27 @@ def impulse_ratio_float(psi: float, m0: float, mc0: float) -> float:
     """
     if psi <= 1.0:
         return psi
+    return ratio_above_one(psi, m0, mc0, quartic_integral_float(m0, mc0))
+
+
+@njit(cache=True, inline="always")
+def ratio_above_one(psi: float, m0: float, mc0: float, j0: float) -> float:
+    """k J(k^2 m0) / J(m0) of eq 41 for psi > 1, given j0 = J(m0) (one per tau0)."""
     k2 = 2.0 / (psi + 1.0)
     j1 = quartic_integral_float(k2 * m0, (psi - 1.0) / (psi + 1.0) + k2 * mc0)
-    return math.sqrt(k2) * j1 / quartic_integral_float(m0, mc0)
+    return math.sqrt(k2) * j1 / j0
+
+
+@njit(cache=True)
+def impulse_ratio_of_psis(psi: np.ndarray, m0: float, mc0: float) -> np.ndarray:
+    """``impulse_ratio_float`` of every element of psi at one tau0 (J(m0) computed once)."""
+    out = np.empty(psi.shape)
+    flat, o = psi.reshape(-1), out.reshape(-1)
+    j0 = quartic_integral_float(m0, mc0)
+    for i in range(flat.size):
+        p = flat[i]
+        o[i] = p if p <= 1.0 else ratio_above_one(p, m0, mc0, j0)
+    return out
 
 
 @vectorize([float64(float64, float64, float64)], cache=True)
