@@ -63,7 +63,7 @@ clean:
 	rm -rf $(VENV) .pytest_cache .ruff_cache .hypothesis
 
 # ---- deployment: replicas behind nginx, load test (docs/deploy.md) -----------
-.PHONY: nginx replica-smoke load-test load-test-replicas
+.PHONY: nginx replica-smoke load-test load-test-replicas soak page-load
 
 # Debian's nginx for the replica smoke test (installed only; no service is started).
 nginx:
@@ -85,3 +85,12 @@ load-test: venv
 
 load-test-replicas: venv nginx
 	$(PY) benchmarks/load_test.py --replicas 2
+
+# Server memory: 50 + 50 page loads and their cleanup, then 10,000 psi moves in one
+# session (RSS sampled every 500; about 20 minutes on 2 cores).
+soak: venv
+	$(PY) benchmarks/soak.py
+
+# Server time of a page load: median of 20 sequential GETs of /main on an idle server.
+page-load: venv
+	$(PY) benchmarks/page_load.py

@@ -1,0 +1,202 @@
+"""What a page load costs the explorer server: sequential GETs of /main on an idle server.
+
+Starts ``python -m app.serve`` (one process) on a free loopback port, waits until it is
+idle, loads the page once (the first load of a process imports and compiles what the
+app needs: reported apart), then times ``--loads`` (20) sequential GETs of ``/main``,
+each from the request sent to the last byte of the page received: the server creating
+the session, building its document and rendering the page.  Reported: median, min,
+p90 and max in ms, the server process's CPU time per load, and the median as a multiple
+of one closed-form contact (``core.numerics.metrics.closed_form_time(Contact, 0.4,
+pi/6)``, the machine yardstick of benchmarks/app_latency.py, measured before and after
+the run).  Target: median <= 0.5 s.
+
+``--profile FILE`` then records the server with py-spy (``.venv/bin/py-spy``) during
+another ``--loads`` GETs (collapsed stacks in FILE) and prints where the time goes:
+the functions of app/, Panel, Bokeh and param holding the most samples (inclusive) and
+the most samples on their own (self).  The timing run is not profiled.
+
+    .venv/bin/python benchmarks/page_load.py
+    .venv/bin/python benchmarks/page_load.py --loads 20 --profile /tmp/page.txt --json out.json
+
+Loopback only; every request has a timeout.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+import shutil
+import signal
+import statistics
+import subprocess
+import sys
+import time
+from collections import Counter
+from pathlib import Path
+from urllib.request import urlopen
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT), str(ROOT / "benchmarks")]
+
+from load_test import loopback_only, serve, stop  # noqa: E402
+from soak import yardstick  # noqa: E402
+
+#: Target: median server time of a page load, in seconds.
+TARGET_S = 0.5
+
+#: Frames of these packages are summarised by --profile (py-spy names files relative to
+#: their entry of sys.path: "app/main.py", "bokeh/document/document.py").
+OURS = re.compile(r"\((?:/[^()]*/)?(app|core|panel|bokeh|param)/")
+#: The line number of a frame, dropped to merge a function's lines.
+LINE = re.compile(r":\d+\)$")
+
+
+def get(url: str) -> float:
+    """Seconds from sending GET `url` to having read the whole response."""
+    t0 = time.perf_counter()
+    with urlopen(url, timeout=60) as r:
+        r.read()
+        if r.status != 200:
+            raise RuntimeError(f"GET {url}: HTTP {r.status}")
+    return time.perf_counter() - t0
+
+
+def cpu_s(pid: int) -> float:
+    """CPU seconds (user + system) of process `pid` so far."""
+    import psutil
+
+    t = psutil.Process(pid).cpu_times()
+    return t.user + t.system
+
+
+def timed_loads(url: str, pid: int, loads: int) -> dict:
+    """`loads` sequential GETs of `url`: their times, and the server's CPU time per load."""
+    c0 = cpu_s(pid)
+    times = [get(url) for _ in range(loads)]
+    cpu = (cpu_s(pid) - c0) / loads
+    ms = sorted(1e3 * t for t in times)
+    return {"loads": loads, "ms": [round(x, 1) for x in ms],
+            "median_ms": round(statistics.median(ms), 1), "min_ms": round(ms[0], 1),
+            "p90_ms": round(ms[int(0.9 * (len(ms) - 1))], 1), "max_ms": round(ms[-1], 1),
+            "server_cpu_ms_per_load": round(1e3 * cpu, 1)}
+
+
+def py_spy() -> str:
+    """The py-spy executable beside this Python, else on PATH."""
+    here = Path(sys.executable).with_name("py-spy")
+    found = str(here) if here.exists() else shutil.which("py-spy")
+    if not found:
+        raise SystemExit("py-spy not found (pip install py-spy)")
+    return found
+
+
+def profile(url: str, pid: int, loads: int, out: Path) -> dict:
+    """Record the server with py-spy during `loads` GETs; collapsed stacks go to `out`."""
+    rec = subprocess.Popen([py_spy(), "record", "--pid", str(pid), "--rate", "250",
+                            "--format", "raw", "--output", str(out), "--nonblocking"],
+                           stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    time.sleep(2.0)  # py-spy attaches
+    try:
+        for _ in range(loads):
+            get(url)
+    finally:
+        rec.send_signal(signal.SIGINT)
+        try:
+            _, err = rec.communicate(timeout=60)
+        except subprocess.TimeoutExpired:
+            rec.kill()
+            _, err = rec.communicate()
+    if not out.exists():
+        raise SystemExit(f"py-spy wrote no profile: {err.strip()[-500:]}")
+    return summarize(out)
+
+
+def summarize(path: Path, top: int = 25) -> dict:
+    """Shares of the samples in a py-spy collapsed-stack file: per function (its lines
+    merged), inclusive for the app's own code (app/, core/) and for Panel, Bokeh and
+    param, and self (the innermost frame) for any code."""
+    inclusive: dict[str, Counter[str]] = {"app": Counter(), "libraries": Counter()}
+    own: Counter[str] = Counter()
+    total = 0
+    for line in path.read_text().splitlines():
+        stack, _, count = line.rpartition(" ")
+        if not stack or not count.isdigit():
+            continue
+        n = int(count)
+        total += n
+        frames = [LINE.sub(")", f) for f in stack.split(";") if f]
+        for f in set(frames):
+            m = OURS.search(f)
+            if m:
+                inclusive["app" if m.group(1) in ("app", "core") else "libraries"][f] += n
+        if frames:
+            own[frames[-1]] += n
+
+    def share(c: Counter[str]) -> list[list]:
+        return [[f, round(100 * n / total, 1)] for f, n in c.most_common(top)] if total else []
+
+    return {"samples": total, "inclusive_app_pct": share(inclusive["app"]),
+            "inclusive_libraries_pct": share(inclusive["libraries"]), "self_pct": share(own)}
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Parse the command line, start the server, time the loads, print the report."""
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--loads", type=int, default=20, help="sequential timed GETs")
+    p.add_argument("--idle", type=float, default=3.0,
+                   help="seconds to let the server settle before the first load")
+    p.add_argument("--profile", type=Path, help="profile another --loads GETs with py-spy, "
+                   "collapsed stacks written here")
+    p.add_argument("--json", type=Path, help="write the results here")
+    args = p.parse_args(argv)
+    if args.loads < 1:
+        p.error("--loads must be >= 1")
+
+    res: dict = {"yardstick_before_us": round(yardstick(), 1)}
+    proc, url = serve(1)
+    loopback_only(url)
+    res["setup"] = f"python -m app.serve --num-procs 1 ({url}); {os.cpu_count()} CPUs"
+    try:
+        time.sleep(args.idle)
+        res["first_load_ms"] = round(1e3 * get(url), 1)
+        time.sleep(args.idle)
+        res.update(timed_loads(url, proc.pid, args.loads))
+        if args.profile:
+            res["profile"] = profile(url, proc.pid, args.loads, args.profile)
+    finally:
+        stop(proc)
+    res["yardstick_after_us"] = round(yardstick(), 1)
+    med_us = 1e3 * res["median_ms"]
+    res["median_in_contacts"] = [round(med_us / res["yardstick_before_us"]),
+                                 round(med_us / res["yardstick_after_us"])]
+    res["met"] = res["median_ms"] <= 1e3 * TARGET_S
+    print(f"setup: {res['setup']}")
+    print(f"first load of the process: {res['first_load_ms']:.0f} ms")
+    print(f"{res['loads']} sequential loads of /main: median {res['median_ms']:.0f} ms "
+          f"(min {res['min_ms']:.0f}, p90 {res['p90_ms']:.0f}, max {res['max_ms']:.0f}); "
+          f"server CPU {res['server_cpu_ms_per_load']:.0f} ms per load")
+    print(f"median = {res['median_in_contacts'][0]}-{res['median_in_contacts'][1]} closed-form "
+          f"contacts; target <= {1e3 * TARGET_S:.0f} ms: {'met' if res['met'] else 'NOT met'}")
+    print(f"machine yardstick (one closed-form contact): {res['yardstick_before_us']:.0f} us "
+          f"before, {res['yardstick_after_us']:.0f} us after the run")
+    if "profile" in res:
+        pr = res["profile"]
+        print(f"profile ({pr['samples']} samples, {args.profile}): inclusive % of samples, "
+              "the app's code")
+        for f, s in pr["inclusive_app_pct"]:
+            print(f"  {s:5.1f}  {f}")
+        print("inclusive % of samples, Panel, Bokeh, param")
+        for f, s in pr["inclusive_libraries_pct"]:
+            print(f"  {s:5.1f}  {f}")
+        print("self % of samples")
+        for f, s in pr["self_pct"][:15]:
+            print(f"  {s:5.1f}  {f}")
+    if args.json:
+        args.json.write_text(json.dumps(res, indent=2) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
