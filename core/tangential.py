@@ -26,7 +26,7 @@ import numpy as np
 from numba import float64, njit, vectorize
 from numpy.typing import ArrayLike, NDArray
 
-from core.clock import HALF_PI_HI, HALF_PI_LO, one_minus_square
+from core.clock import HALF_PI_HI, HALF_PI_LO, clock, one_minus_square
 from core.elliptic import quartic_integral_float
 from core.hertz import pressure
 
@@ -64,16 +64,37 @@ def tau1(psi: float, sin_half_e: float, cos_half_e: float) -> float:
     ill-conditioned, so it is taken through the complement
     1 - x = (psi - 1)/((psi + 1)(1 + k)) + k cos^2(e/2)/(1 + sin(e/2)), which never cancels:
     tau1 = 3 pi/2 - 4 arcsin(sqrt((1 - x)/2)).
+
+    The float returned is the first float at which the clock reaches k (``phase`` and
+    ``stick_radius_squared`` read counter-slip, b = 0): the formula's value moved by the
+    few ulp its rounding leaves, so that the phase at tau1 is counter-slip by the same
+    rule as everywhere (one rule at the boundary), and the float before it partial stick.
     """
     if psi <= 1.0:
         return math.nan
     k = stick_clock(psi)
     x = k * sin_half_e
     if x <= 0.5:
-        return HALF_PI_HI + (2.0 * math.asin(x) + HALF_PI_LO)
-    one_minus_x = (psi - 1.0) / ((psi + 1.0) * (1.0 + k)) + k * cos_half_e**2 / (1.0 + sin_half_e)
-    quarter = math.asin(math.sqrt(0.5 * one_minus_x))
-    return 3.0 * HALF_PI_HI - (4.0 * quarter - 3.0 * HALF_PI_LO)
+        t = HALF_PI_HI + (2.0 * math.asin(x) + HALF_PI_LO)
+    else:
+        one_minus_x = ((psi - 1.0) / ((psi + 1.0) * (1.0 + k))
+                       + k * cos_half_e**2 / (1.0 + sin_half_e))
+        quarter = math.asin(math.sqrt(0.5 * one_minus_x))
+        t = 3.0 * HALF_PI_HI - (4.0 * quarter - 3.0 * HALF_PI_LO)
+    return _first_counter_slip(t, k, 1.0 / sin_half_e)
+
+
+@njit(cache=True)
+def _first_counter_slip(t: float, k: float, inv_sin_half_e: float) -> float:
+    """The first float at or near t whose clock is >= k (the clock rises through k)."""
+    for _ in range(64):  # the formula is a few ulp off; the bound only guards the loop
+        if clock(t, inv_sin_half_e) < k:
+            t = np.nextafter(t, math.inf)
+        elif clock(np.nextafter(t, -math.inf), inv_sin_half_e) >= k:
+            t = np.nextafter(t, -math.inf)
+        else:
+            break
+    return t
 
 
 @njit(cache=True, inline="always")

@@ -8,8 +8,10 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from core import Contact
+from core import Contact, Phase, batch, curve
 
 QUANTITIES = ("clock", "phase", "approach", "contact_radius", "stick_radius", "normal_force",
               "tangential_force", "centre_displacement", "centre_velocity")
@@ -66,3 +68,25 @@ def test_long_two_dimensional_arrays_give_the_values_of_each_row() -> None:
         assert values.shape == tau.shape and not values.flags.writeable, q
         for row in range(2):
             np.testing.assert_array_equal(values[row], getattr(c, q)(tau[row]), err_msg=q)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.floats(1.0 + 1e-9, 1e8), st.floats(-1.55, 1.55))
+def test_counter_slip_starts_at_the_tau1_core_reports(psi: float, tau0: float) -> None:
+    """One rule for the boundary (eq 31): at tau = Contact.tau1 every quantity says
+    counter-slip (phase 4, b = 0 exactly, T = -mu P, eq 33), through Contact, Timeline,
+    core.batch and core.curve alike; just before it, partial stick still has b > 0."""
+    c = Contact(psi, tau0)
+    t1 = c.tau1
+    line = c.at(np.array([t1]))
+    assert int(line.phase[0]) == Phase.COUNTER_SLIP
+    assert line.stick_radius[0] == 0.0
+    assert line.tangential_force[0] == pytest.approx(-line.normal_force[0], rel=1e-14,
+                                                     abs=1e-300)
+    assert int(batch.phase(psi, tau0, t1)) == Phase.COUNTER_SLIP
+    rows, _ = curve(psi, tau0)
+    at_t1 = rows[0] == t1
+    assert at_t1.any() and (rows[2][at_t1] == 0.0).all()  # tau1 is a grid point
+    before = t1 - 1e-6 * (t1 - math.pi / 2)
+    if before > math.pi / 2 and c.tau1 < c.tau_end:
+        assert int(c.phase(before)) == Phase.PARTIAL_STICK and c.stick_radius(before) > 0
