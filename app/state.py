@@ -80,7 +80,10 @@ PRESETS: dict[str, Preset] = {
     "fig6c": Preset("Fig. 6c: end of loading, tau = pi/2", SQRT2_1, TAU0, PI / 2),
     "fig6d": Preset("Fig. 6d: partial stick, tau = 7pi/12", SQRT2_1, TAU0, 7 * PI / 12),
     "fig6e": Preset("Fig. 6e: partial stick, tau = 17pi/24", SQRT2_1, TAU0, 17 * PI / 24),
-    "fig6f": Preset("Fig. 6f: counter-slip starts, tau = 3pi/4", SQRT2_1, TAU0, 3 * PI / 4),
+    # tau1 = 3 pi/4 (the first float of counter-slip: 3 pi/4 rounded down is still in
+    # partial stick, by a stick disc of 1.5e-8 a*)
+    "fig6f": Preset("Fig. 6f: counter-slip starts, tau = 3pi/4", SQRT2_1, TAU0,
+                    Contact(SQRT2_1, TAU0).tau1),
     "fig7a": Preset("Fig. 7a: T(tau), psi = 0.4, 0.8, 1", 0.8, TAU0, PI / 2,
                     family=(0.4, 0.8, 1.0)),
     "fig7b": Preset("Fig. 7b: T(tau), psi = 2.41, 6.46, 28.35", 6.46, TAU0, PI / 2,
@@ -154,7 +157,9 @@ class ExplorerState(param.Parameterized):
 
     def query(self) -> dict[str, str]:
         """The shareable part of the state as URL query values."""
-        q = {k: f"{getattr(self, k):.10g}" for k in ("psi", "tau0", "mu", "nu", "tau")}
+        # repr: the shortest text that reads back as the same float (a link restores the
+        # very state, the preset included)
+        q = {k: repr(float(getattr(self, k))) for k in ("psi", "tau0", "mu", "nu", "tau")}
         if self.log_psi:
             q["log_psi"] = "1"
         if self.preset:
@@ -169,7 +174,8 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
     `pn.state.session_args`).  Returns `(values, messages)`: the accepted values as
     parameter updates for `ExplorerState`, and one human-readable message per
     rejected value (whose default is then kept).  Unknown names are reported too.
-    A `preset` is applied first; explicit values then override it.
+    A `preset` is applied first; explicit values then override it (and the state leaves
+    the preset if they differ from its values: `ExplorerState.matches`).
     """
     values: dict = {}
     messages: list[str] = []
@@ -201,8 +207,6 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
                 values[key] = parse_value(key, flat[key])
             except ValueError as err:
                 messages.append(str(err))
-            else:
-                values["preset"] = ""
 
     if "log_psi" in flat:
         raw = flat["log_psi"].lower()

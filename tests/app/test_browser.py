@@ -81,7 +81,7 @@ def test_keyboard_slider_changes_plot_data(browser, url) -> None:
     np.testing.assert_allclose(T, c.tangential_force(np.asarray(tau)), rtol=1e-12,
                                atol=1e-15)
     # the URL follows (once, after the moves)
-    page.wait_for_function("(p) => location.search.includes('psi=' + p)", arg=f"{psi:.10g}",
+    page.wait_for_function("(p) => location.search.includes('psi=' + p)", arg=repr(psi),
                            timeout=5000)
     assert errors(console) == []
     page.close()

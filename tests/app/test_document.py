@@ -272,10 +272,15 @@ def test_fig6_presets_walk_through_the_phases(ex: Explorer) -> None:
     for key in ("fig6a", "fig6b", "fig6c", "fig6d", "fig6e", "fig6f"):
         ex.state.apply_preset(key)
         phases.append(int(contact_of(ex).phase(ex.state.tau)))
-    assert phases[:3] == [2, 2, 2] and phases[3:5] == [3, 3]
-    # Fig. 6f sits at tau1 = 3 pi / 4, where the stick disc has just vanished
-    assert ex.disc.source.data["inner"][1] == pytest.approx(0.0, abs=1e-6)
-    assert contact_of(ex).tau1 == pytest.approx(3 * math.pi / 4, rel=1e-12)
+    assert phases == [2, 2, 2, 3, 3, 4]
+    # Fig. 6f sits at tau1 = 3 pi / 4: counter-slip starts, the stick disc has vanished,
+    # and every part of the page says so
+    assert contact_of(ex).tau1 == ex.state.tau == pytest.approx(3 * math.pi / 4, rel=1e-15)
+    assert ex.disc.source.data["inner"][1] == 0.0
+    assert ex.disc.source.data["label"][1] == "counter-slip"
+    assert ex.formulas.object.startswith("**Counter-slip (τ₁ ≤ τ")
+    assert ex.traction.figure.title.text == "Traction: counter-slip"
+    assert max(ex.traction.source.data["stick_hi"]) == 0.0  # no stick sliver drawn
 
 
 def test_reset_restores_defaults(ex: Explorer) -> None:
@@ -295,7 +300,7 @@ def test_parse_query_accepts_good_values() -> None:
                                     "tau": "2.0", "log_psi": "1"})
     assert messages == []
     assert values == {"psi": 6.46, "tau0": 0.3, "mu": 0.25, "nu": 0.2, "tau": 2.0,
-                      "log_psi": True, "preset": ""}
+                      "log_psi": True}
 
 
 def test_parse_query_reads_session_args_bytes() -> None:
@@ -340,6 +345,17 @@ def test_good_query_sets_state_and_round_trips() -> None:
     assert_sources_match_core(ex)
     again, messages = parse_query(ex.state.query())
     assert messages == [] and again["psi"] == 12.5 and again["tau"] == 2.5
+
+
+@pytest.mark.parametrize("name", list(PRESETS))
+def test_a_link_restores_the_very_state_preset_included(name: str) -> None:
+    ex = Explorer(query={"preset": name})
+    ex.psi_slider.value = ex.state.psi  # no change
+    shared = Explorer(query=ex.state.query())
+    assert shared.state.query() == ex.state.query()
+    assert shared.state.preset == name and not shared.message.visible
+    assert (shared.state.psi, shared.state.tau0, shared.state.tau) == (
+        ex.state.psi, ex.state.tau0, ex.state.tau)
 
 
 # --------------------------------------------------------------------- CSV
