@@ -105,6 +105,18 @@ class Explorer:
         self.state.param.watch(self._on_speed, ["speed"])
         self.impulse.set_log(self.state.log_psi)
         self.impulse_pane = pn.pane.Bokeh(self.impulse.figure, sizing_mode="stretch_width")
+        #: the curve scenes share one card, one tab each; only the open tab is drawn
+        #: (and computed: the others catch up when their tab is opened)
+        self.tabs = pn.Tabs(
+            ("T(τ) (Fig. 7)", pn.pane.Bokeh(self.force.figure, sizing_mode="stretch_width")),
+            ("Impulse (Fig. 8)", self.impulse_pane),
+            ("Radii (Fig. 4b)", pn.pane.Bokeh(self.radii.figure, sizing_mode="stretch_width")),
+            ("Centre motion (Fig. 9)",
+             pn.pane.Bokeh(self.motion.figure, sizing_mode="stretch_width")),
+            dynamic=True, sizing_mode="stretch_width")
+        self.tabbed: list[Scene] = [self.force, self.impulse, self.radii, self.motion]
+        self._stale: set[Scene] = set()
+        self.tabs.param.watch(self._on_tab, ["active"])
         self.refresh()
 
     # ------------------------------------------------------------------ state
@@ -119,14 +131,35 @@ class Explorer:
             self.messages.append(f"these parameters are rejected ({err}); defaults used")
             self.state.param.update(**defaults)
 
+    def shown(self, scene: Scene) -> bool:
+        """Whether `scene` is on the page now (the curve scenes: their tab is open)."""
+        return scene not in self.tabbed or self.tabbed[self.tabs.active] is scene
+
+    def _on_tab(self, event) -> None:
+        self.catch_up([self.tabbed[event.new]])
+
+    def catch_up(self, scenes: list[Scene]) -> None:
+        """Bring those of `scenes` that missed changes while hidden up to date."""
+        c, tau = self.contact, self.state.tau
+        with hold():
+            for scene in scenes:
+                if scene in self._stale:
+                    self._stale.discard(scene)
+                    scene.update_contact(c)
+                    scene.update_tau(c, tau)
+
     def refresh(self) -> None:
-        """Recompute every scene for the current state (after a parameter change)."""
+        """Recompute every scene shown for the current state (after a parameter change);
+        the others are marked to catch up when shown."""
         c = self.contact
         tau = self.state.tau
         with hold():
             for scene in self.scenes:
-                scene.update_contact(c)
-                scene.update_tau(c, tau)
+                if self.shown(scene):
+                    scene.update_contact(c)
+                    scene.update_tau(c, tau)
+                else:
+                    self._stale.add(scene)
             self._show_family()
             self.tau_slider.param.update(start=c.tau0, end=c.tau_end, value=tau)
             self.readout.show(self.readout_rows(c))
@@ -199,7 +232,12 @@ class Explorer:
         c, tau = self.contact, self.state.tau
         with hold():
             for scene in self.scenes:
-                scene.update_tau(c, tau)
+                if scene in self._stale:
+                    continue  # caught up in full when shown
+                if self.shown(scene):
+                    scene.update_tau(c, tau)
+                else:
+                    self._stale.add(scene)
             self.methods.update_tau(c, tau)
             self._show_formulas(c, tau)
             self.traction.caption.text = self._now_text(c, tau)
@@ -217,9 +255,11 @@ class Explorer:
 
     def _on_log(self, event) -> None:
         self.impulse.set_log(event.new)
+        self._stale.add(self.impulse)
         with hold():
-            self.impulse.update_contact(self.contact)
             self.impulse_pane.object = self.impulse.figure
+            if self.shown(self.impulse):
+                self.catch_up([self.impulse])
         self._write_url()
 
     # -------------------------------------------------------------- animation
@@ -429,6 +469,7 @@ class Explorer:
     def csv_text(self, key: str) -> str:
         """CSV of the data shown: 'curves' (T, radii, motion on the tau grid),
         'traction' (the profile at the current tau) or 'impulse' (the impulse curve)."""
+        self.catch_up(self.tabbed)  # a hidden tab's data too, as it is now
         if key == "curves":
             table = self.force.table()
             for scene in (self.radii, self.motion):
@@ -528,13 +569,7 @@ class Explorer:
                 card(self.formulas, title="Formulas of the current phase", flex="2 1 480px"),
                 card(pn.pane.Bokeh(self.readout.figure, sizing_mode="stretch_width"),
                      title="Derived quantities", flex="1 1 380px"),
-                card(pn.pane.Bokeh(self.force.figure, sizing_mode="stretch_width"),
-                     title="T(τ) (Fig. 7)"),
-                card(self.impulse_pane, title="Impulse (Fig. 8)"),
-                card(pn.pane.Bokeh(self.radii.figure, sizing_mode="stretch_width"),
-                     title="Radii (Fig. 4b)"),
-                card(pn.pane.Bokeh(self.motion.figure, sizing_mode="stretch_width"),
-                     title="Contact-centre motion (Fig. 9)"),
+                card(self.tabs, title="Curves over the contact", flex="1 1 100%"),
                 sizing_mode="stretch_width", align_content="flex-start"),
             self.methods.view(),
         ]

@@ -37,7 +37,13 @@ def contact_of(ex: Explorer) -> Contact:
 
 
 def assert_sources_match_core(ex: Explorer) -> None:
-    """Every named source holds what core computes for the explorer's state."""
+    """Every named source holds what core computes for the explorer's state, each curve
+    scene once its tab is opened (the open tab is left as it was)."""
+    active = ex.tabs.active
+    for i in range(len(ex.tabbed)):
+        ex.tabs.active = i
+    ex.tabs.active = active
+    assert not ex._stale  # every tab was opened: all caught up
     c, tau = contact_of(ex), ex.state.tau
     grid = c.tau_grid(CURVE_POINTS)
 
@@ -136,6 +142,7 @@ def test_tau_is_clamped_into_the_new_contact(ex: Explorer) -> None:
 
 
 def test_log_psi_axis_reaches_1e6(ex: Explorer) -> None:
+    ex.tabs.active = ex.tabbed.index(ex.impulse)
     ex.log_box.value = True
     psi = np.asarray(ex.impulse.source.data["psi"])
     assert psi.min() <= 1e-3 and psi.max() >= 1e6 and 1.0 in psi
@@ -147,6 +154,7 @@ def test_log_psi_axis_reaches_1e6(ex: Explorer) -> None:
 
 
 def test_large_psi_in_linear_mode_extends_the_axis(ex: Explorer) -> None:
+    ex.tabs.active = ex.tabbed.index(ex.impulse)
     ex.psi_slider.value = 100.0
     psi = np.asarray(ex.impulse.source.data["psi"])
     assert psi.max() >= 100.0 and 1.0 in psi
@@ -155,6 +163,7 @@ def test_large_psi_in_linear_mode_extends_the_axis(ex: Explorer) -> None:
 
 def test_moving_psi_sends_only_the_impulse_marker(ex: Explorer) -> None:
     """The impulse curve depends on tau0 only: a psi move must not recompute it."""
+    ex.tabs.active = ex.tabbed.index(ex.impulse)
     curve = ex.impulse.source.data
     ex.psi_slider.value = 3.0
     assert ex.impulse.source.data is curve
@@ -166,11 +175,11 @@ def test_moving_psi_sends_only_the_impulse_marker(ex: Explorer) -> None:
 
 def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> None:
     """What a slider move sends decides the browser's work: new data for the plots that
-    show psi and the caption drawn on the traction canvas.  No text pane, no range, no
-    title, no hidden plot (each makes the browser restyle or lay out the page again; see
-    docs/app.md); the number box shows the slider's value.  (The slider's own value is in
-    the set because the move is made here, server side; Panel does not send a browser's
-    change back.)"""
+    show psi and the caption drawn on the traction canvas; the curve scenes of closed
+    tabs send nothing (they catch up when opened).  No text pane, no range, no title
+    (each makes the browser restyle or lay out the page again); the number box shows
+    the slider's value.  (The slider's own value is in the set because the move is made
+    here, server side; Panel does not send a browser's change back.)"""
     doc = Document()
     ex.view().server_doc(doc)
     ex.psi_slider.value = 2.5  # leaves the preset: the preset menu changes this once
@@ -180,12 +189,16 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
     changed = {(type(e.model).__name__, e.model.name, getattr(e, "attr", "data"))
                for e in events}
     data = {("ColumnDataSource", n, "data") for n in (
-        "traction", "disc", "force", "force_marker", "impulse_marker", "radii",
-        "radii_marker", "motion", "motion_marker", "readout")}
+        "traction", "disc", "force", "force_marker", "readout")}
     assert changed == data | {("Label", "traction_caption", "text"),
                               ("Slider", None, "value"), ("TextInput", None, "value"),
                               ("TextInput", None, "value_input")}
     assert ex.state.psi == ex.psi_slider.value == 2.51
+    events.clear()
+    ex.tabs.active = ex.tabbed.index(ex.radii)  # opening a tab brings it up to date
+    changed = {(type(e.model).__name__, e.model.name) for e in events}
+    assert {("ColumnDataSource", "radii"), ("ColumnDataSource", "radii_marker")} <= changed
+    assert ("ColumnDataSource", "motion") not in changed
 
 
 def test_legend_entries_are_static_proxies_of_the_curves(ex: Explorer) -> None:
