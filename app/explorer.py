@@ -92,7 +92,8 @@ class Explorer:
         self.readout = ReadoutScene()
         self.methods = MethodsScene()
         self.player = Player(self.traction, self.disc, [self.force, self.radii, self.motion],
-                             self.traction.caption, self.traction.figure, self._now_texts)
+                             self.traction.caption, self.traction.phase_label,
+                             self.traction.figure, self._now_texts)
         self._play_start = (0.0, 0.0)  # (progress, time.monotonic()) when play last started
 
         self._build_widgets()

@@ -13,19 +13,14 @@ from core import PHASE_NAMES, Phase
 
 @dataclass(frozen=True)
 class PhaseStyle:
-    """The look of one phase: its colour (the traction title, the disc's key), and the
-    name and colour of the disc's ring outside the stick disc (the whole disc slips
-    or counter-slips outside it)."""
+    """The look of one phase: its name and colour (the traction plot's phase label, the
+    disc's key), and the name and colour of the disc's ring outside the stick disc (the
+    whole disc slips or counter-slips outside it)."""
 
     name: str
     color: str
     ring: str
     ring_color: str
-
-    @property
-    def title(self) -> str:
-        """The traction plot's title in this phase."""
-        return f"Traction: {self.name}"
 
 
 #: Okabe-Ito colours (colour-blind safe); the stick disc is always the full-stick green.

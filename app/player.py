@@ -54,8 +54,8 @@ function draw(k) {
   }
   if (F.phase[k] !== phase) {                  // a few times per contact
     phase = F.phase[k];
-    title.text = F.title[k];
-    title.text_color = F.title_color[k];
+    phase_label.text = F.phase_name[k];
+    phase_label.text_color = F.phase_color[k];
   }
 }
 function tick(now) {
@@ -84,20 +84,21 @@ class Player:
     """The frame store and the script that plays it in the browser."""
 
     def __init__(self, traction: TractionScene, disc: DiscScene, curves: list[CurveScene],
-                 caption: Label, title_figure: Figure,
+                 caption: Label, phase_label: Label, host: Figure,
                  captions: Callable[[Contact, np.ndarray], list[str]]) -> None:
-        """``captions(c, taus)`` gives the caption text of each frame."""
+        """``captions(c, taus)`` gives the caption text of each frame; `host` is a figure
+        of the page that keeps the frame sources in the document."""
         self.traction, self.disc, self.curves = traction, disc, curves
         self.captions = captions
         self.frames = ColumnDataSource(data={}, name="frames")
         self.profiles = ColumnDataSource(data={}, name="frame_profiles")
         # referenced from a figure, so that both sources are part of the document
-        title_figure.tags = [*title_figure.tags, self.frames, self.profiles]
+        host.tags = [*host.tags, self.frames, self.profiles]
         self.frames.js_on_change("data", CustomJS(args={
             "frames": self.frames, "profiles": self.profiles, "traction": traction.source,
             "disc": disc.source, "markers": [s.marker for s in curves],
             "marker_columns": [[f"{s.name}:{col}" for col, *_ in s.curves] for s in curves],
-            "caption": caption, "title": title_figure.title,
+            "caption": caption, "phase_label": phase_label,
         }, code=_PLAY_JS))
 
     def play(self, c: Contact, start: float, speed: float, seconds: float) -> None:
@@ -114,8 +115,8 @@ class Player:
             "disc_color": [look.ring_color for look in looks],
             "disc_label": [look.ring for look in looks],
             "caption": self.captions(c, taus),
-            "title": [look.title for look in looks],
-            "title_color": [look.color for look in looks],
+            "phase_name": [look.name for look in looks],
+            "phase_color": [look.color for look in looks],
             **{f"{s.name}:{col}": v for s in self.curves for col, v in s.columns(c, taus).items()},
         }
         n = taus.size

@@ -151,7 +151,7 @@ class TractionScene(Scene):
     def __init__(self) -> None:
         super().__init__({k: [] for k in ("r", "traction", "upper", "lower", "stick_lo",
                                           "stick_hi")})
-        fig = _figure("Traction", "r / a*", "traction  τᵤ / (μ p*)")
+        fig = _figure("Traction profile", "r / a*", "traction  τᵤ / (μ p*)")
         stick = fig.varea("r", "stick_lo", "stick_hi", source=self.source,
                           fill_color=STICK_COLOR, fill_alpha=0.25, level=FRAME_LEVEL)
         envelope = [fig.line("r", col, source=self.source, line_dash="dashed", color="grey",
@@ -167,6 +167,14 @@ class TractionScene(Scene):
                              background_fill_alpha=0.8, name="traction_caption",
                              level=FRAME_LEVEL)
         fig.add_layout(self.caption)
+        # the phase, in its colour, drawn with the data: BokehJS does not always repaint a
+        # changed Title (its new text showed only after a resize), a Label on the overlay
+        # level is painted with every frame
+        self.phase_label = Label(x=0, y=0, text="", text_baseline="top",
+                                 text_font_size="15pt", text_font_style="bold",
+                                 background_fill_color="white", background_fill_alpha=0.8,
+                                 name="traction_phase", level=FRAME_LEVEL)
+        fig.add_layout(self.phase_label)
         _style(fig)
         self.figure = fig
 
@@ -177,6 +185,7 @@ class TractionScene(Scene):
         self.figure.x_range.start, self.figure.x_range.end = -1.1 * a_max, 1.1 * a_max
         self.figure.y_range.start, self.figure.y_range.end = -1.6 * p_max, 1.6 * p_max
         self.caption.x, self.caption.y = 1.08 * a_max, 1.55 * p_max
+        self.phase_label.x, self.phase_label.y = -1.08 * a_max, 1.55 * p_max
 
     def profiles(self, c: Contact, taus: np.ndarray) -> dict[str, np.ndarray]:
         """The profile at each of the K times `taus`: columns of shape (K, L).
@@ -199,8 +208,8 @@ class TractionScene(Scene):
     def update_tau(self, c: Contact, tau: float) -> None:
         self.source.data = inline({k: v[0] for k, v in self.profiles(c, np.array([tau])).items()})
         look = style(c.phase(tau))
-        self.figure.title.text_color = look.color
-        self.figure.title.text = look.title  # changes once a phase
+        self.phase_label.text_color = look.color
+        self.phase_label.text = look.name
 
 
 class DiscScene(Scene):

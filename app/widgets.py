@@ -50,7 +50,8 @@ class ExactSlider(pn.viewable.Viewer):
         self._digits = digits
         self._slider = pn.widgets.FloatSlider(
             value=value, start=self.start, end=self.end, step=step,
-            show_value=False, sizing_mode="stretch_width", margin=(0, 8, 5, 8))
+            show_value=False, sizing_mode="stretch_width", margin=(0, 8, 5, 8),
+            css_classes=[f"slider-{name}"] if name else [])
         self._entry = pn.widgets.TextInput(label=label, value=self._text(value),
                                            sizing_mode="stretch_width", margin=(0, 8))
         self._message = pn.pane.HTML("", visible=False, styles=ERROR_STYLE,

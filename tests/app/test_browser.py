@@ -65,14 +65,14 @@ def settled(page, name: str, col: str, timeout_ms: int = 20_000) -> list[float]:
 @pytest.mark.smoke
 def test_keyboard_slider_changes_plot_data(browser, url) -> None:
     page, console = open_explorer(browser, url)
-    psi0 = column(page, "impulse_marker", "psi")[0]
+    psi0 = psi_of(page)
     handle = page.locator(".noUi-handle").first  # the psi slider
     handle.focus()
     for _ in range(3):
         page.keyboard.press("ArrowRight")
-    page.wait_for_function("(v) => __col('impulse_marker', 'psi')[0] > v + 0.02", arg=psi0,
-                           timeout=20_000)
-    psi = settled(page, "impulse_marker", "psi")[0]
+    page.wait_for_function("(v) => __psi() > v + 0.02", arg=psi0, timeout=20_000)
+    settled(page, "force", "T")  # the server's data for the last move arrived
+    psi = psi_of(page)
     assert psi == pytest.approx(psi0 + 0.03, abs=0.011)  # three steps of 0.01
     # the plotted curve is exactly what core computes for the new psi
     tau, T = column(page, "force", "tau"), column(page, "force", "T")
@@ -87,14 +87,25 @@ def test_keyboard_slider_changes_plot_data(browser, url) -> None:
     page.close()
 
 
+def psi_of(page) -> float:
+    """psi as the page's psi slider holds it (exact)."""
+    return page.evaluate("() => __psi()")
+
+
+def wait_for_new(page, name: str, col: str, before: list[float] | None) -> list[float]:
+    """Wait until the column differs from `before` (the server's data arrived); the column."""
+    page.wait_for_function("([n, c, b]) => JSON.stringify(__col(n, c)) !== JSON.stringify(b)",
+                           arg=[name, col, before], timeout=20_000)
+    return column(page, name, col)
+
+
 def step_psi(page) -> float:
     """Press ArrowRight on the psi slider and wait until the plots' data follow; the new psi."""
-    psi0 = column(page, "impulse_marker", "psi")[0]
+    T = column(page, "force", "T")
     page.locator(".noUi-handle").first.focus()
     page.keyboard.press("ArrowRight")
-    page.wait_for_function("(v) => __col('impulse_marker', 'psi')[0] > v", arg=psi0,
-                           timeout=20_000)
-    return column(page, "impulse_marker", "psi")[0]
+    wait_for_new(page, "force", "T", T)
+    return psi_of(page)
 
 
 def test_number_box_follows_the_slider_and_takes_exact_values(browser, url) -> None:
@@ -104,11 +115,11 @@ def test_number_box_follows_the_slider_and_takes_exact_values(browser, url) -> N
     box = page.locator("input.bk-input").first  # the psi box, above the psi slider
     psi = step_psi(page)
     assert float(box.input_value()) == pytest.approx(psi, rel=1e-5)  # shown to 6 digits
+    T = column(page, "force", "T")
     box.fill("250.5")
     box.press("Enter")
-    page.wait_for_function("() => __col('impulse_marker', 'psi')[0] === 250.5",
-                           timeout=20_000)
-    T = column(page, "force", "T")
+    T = wait_for_new(page, "force", "T", T)
+    assert psi_of(page) == 250.5
     c = Contact(250.5, math.pi / 6)
     np.testing.assert_allclose(T, c.tangential_force(c.tau_grid(CURVE_POINTS)),
                                rtol=1e-12, atol=1e-15)
@@ -121,12 +132,12 @@ def test_number_box_follows_the_slider_and_takes_exact_values(browser, url) -> N
     # heard from the box itself (the box never reports the slider's moves)
     page.locator(".noUi-handle").first.focus()
     page.keyboard.press("ArrowLeft")
-    page.wait_for_function("() => __col('impulse_marker', 'psi')[0] < 250.5",
-                           timeout=20_000)
+    page.wait_for_function("() => __psi() < 250.5", timeout=20_000)
+    T = wait_for_new(page, "force", "T", T)
     page.get_by_role("button", name="Reset").click()
     default = ExplorerState().psi
-    page.wait_for_function("(v) => __col('impulse_marker', 'psi')[0] === v", arg=default,
-                           timeout=20_000)
+    page.wait_for_function("(v) => __psi() === v", arg=default, timeout=20_000)
+    T = wait_for_new(page, "force", "T", T)
     for _ in range(50):  # the box follows the slider in the browser
         if float(box.input_value()) == pytest.approx(default, abs=5e-4):
             break
@@ -134,8 +145,8 @@ def test_number_box_follows_the_slider_and_takes_exact_values(browser, url) -> N
     assert float(box.input_value()) == pytest.approx(default, abs=5e-4)
     box.fill("250.5")  # the value the server last heard from the box
     box.press("Enter")
-    page.wait_for_function("() => __col('impulse_marker', 'psi')[0] === 250.5",
-                           timeout=20_000)
+    wait_for_new(page, "force", "T", T)
+    assert psi_of(page) == 250.5
     assert errors(console) == []
     page.close()
 
@@ -171,14 +182,14 @@ def test_bad_query_shows_message_and_falls_back(browser, url) -> None:
     page, console = open_explorer(browser, f"{url}?{urlencode(query)}")
     for message in parse_query(query)[1]:
         assert page.get_by_text(message).is_visible(), message
-    assert column(page, "impulse_marker", "psi")[0] == pytest.approx(math.sqrt(2) + 1)
+    assert psi_of(page) == math.sqrt(2) + 1
     assert errors(console) == []
     page.close()
 
 
 def test_good_query_sets_the_parameters(browser, url) -> None:
     page, _ = open_explorer(browser, f"{url}?psi=6.46&tau0=0.2&tau=2.0")
-    assert column(page, "impulse_marker", "psi") == [6.46]
+    assert psi_of(page) == 6.46
     assert column(page, "force_marker", "x")[0] == 2.0
     assert column(page, "force", "tau")[0] == pytest.approx(0.2)
     page.close()
@@ -239,7 +250,7 @@ def test_step_button_moves_tau(browser, url) -> None:
 def test_preset_loads(browser, url) -> None:
     page, console = open_explorer(browser, url)
     page.locator("select").first.select_option(label="Fig. 7b: T(tau), psi = 2.41, 6.46, 28.35")
-    page.wait_for_function("() => __col('impulse_marker', 'psi')[0] === 6.46", timeout=20_000)
+    page.wait_for_function("() => __psi() === 6.46", timeout=20_000)
     page.wait_for_function("() => (__col('force_family', 'label') || []).length === 3")
     assert column(page, "force_marker", "x")[0] == pytest.approx(math.pi / 2)
     page.wait_for_function("() => location.search.includes('preset=fig7b')",
@@ -261,6 +272,9 @@ def test_legend_click_hides_the_curve(browser, url) -> None:
     """Legend entries are empty proxies (app.scenes.add_legend); a click on one must
     still hide the real curve, and a second click show it again."""
     page, console = open_explorer(browser, url)
+    assert column(page, "motion", "u2") is None  # its tab is closed: not in the page
+    page.get_by_text("Centre motion (Fig. 9)", exact=True).click()
+    page.wait_for_function("() => (__col('motion', 'u2') || []).length > 0", timeout=20_000)
     visible = "() => Bokeh.documents[0].get_model_by_name('motion_u2').visible"
     assert page.evaluate(visible) is True
     entry = page.get_by_text("u₂ / u₀", exact=True)
@@ -272,75 +286,81 @@ def test_legend_click_hides_the_curve(browser, url) -> None:
     page.close()
 
 
-#: The page box of the traction plot (the figure whose title starts "Traction").
+#: The page box of the traction plot and the phase its label names.
 JS_TRACTION_BOX = """() => {
   const v = __views((v) => v.model != null && v.model.type === "Figure"
-      && v.model.title != null && String(v.model.title.text).startsWith("Traction"))[0];
+      && v.model.title != null && v.model.title.text === "Traction profile")[0];
   const r = v.el.getBoundingClientRect();
-  return {x: r.x, y: r.y, width: r.width, height: r.height, title: v.model.title.text};
+  const label = Bokeh.documents[0].get_model_by_name("traction_phase");
+  return {x: r.x, y: r.y, width: r.width, height: r.height, phase: label.text};
 }"""
 
 
-def painted_title(page) -> tuple[str, bytes]:
-    """The traction plot's title as the model holds it, and the pixels of its title band."""
+def painted_phase(page) -> bytes:
+    """The pixels of the traction plot's top-left corner, where its phase label is."""
     box = page.evaluate(JS_TRACTION_BOX)
-    clip = {"x": box["x"], "y": box["y"], "width": box["width"], "height": 40}
-    return box["title"], page.screenshot(clip=clip)
+    clip = {"x": box["x"], "y": box["y"], "width": box["width"] / 2, "height": 110}
+    return page.screenshot(clip=clip)
 
 
-def assert_title_painted(page, expected: str) -> None:
-    """The model's title is `expected` and the canvas shows it: the title band is the
-    same after the browser repaints every plot from scratch (a resize)."""
-    page.wait_for_function(f"() => ({JS_TRACTION_BOX})().title === {expected!r}",
+def assert_phase_painted(page, expected: str) -> None:
+    """The traction plot's phase label is `expected` and the canvas shows it: the corner
+    looks the same after the browser repaints every plot from scratch (a resize)."""
+    page.wait_for_function(f"() => ({JS_TRACTION_BOX})().phase === {expected!r}",
                            timeout=20_000)
     page.wait_for_timeout(700)  # whatever the browser paints on its own is painted now
-    _, shown = painted_title(page)
+    shown = painted_phase(page)
     size = page.viewport_size
     page.set_viewport_size({"width": size["width"] - 40, "height": size["height"]})
     page.wait_for_timeout(700)
     page.set_viewport_size(size)
     page.wait_for_timeout(1000)
-    _, fresh = painted_title(page)
-    assert shown == fresh, f"the canvas did not show the title {expected!r} until a resize"
+    fresh = painted_phase(page)
+    if shown != fresh:
+        ARTIFACTS.mkdir(exist_ok=True)
+        (ARTIFACTS / "phase_shown.png").write_bytes(shown)
+        (ARTIFACTS / "phase_after_resize.png").write_bytes(fresh)
+    assert shown == fresh, f"the canvas did not show the phase {expected!r} until a resize"
 
 
-def title_of(psi: float, tau0: float, tau: float) -> str:
-    return style(Contact(psi, tau0).phase(tau)).title
+def phase_of(psi: float, tau0: float, tau: float) -> str:
+    return style(Contact(psi, tau0).phase(tau)).name
 
 
-def test_the_traction_title_is_painted_after_psi_moves_into_counter_slip(browser, url) -> None:
+def test_the_traction_phase_is_painted_after_psi_moves_into_counter_slip(browser, url) -> None:
     page, console = open_explorer(browser, url)
     box = page.locator("input.bk-input").nth(4)  # tau
     box.fill("2.30")
     box.press("Enter")
-    assert_title_painted(page, title_of(math.sqrt(2) + 1, math.pi / 6, 2.30))
+    assert_phase_painted(page, phase_of(math.sqrt(2) + 1, math.pi / 6, 2.30))
     page.locator(".noUi-handle").first.focus()  # psi
     for _ in range(11):
         page.keyboard.press("PageUp")
         page.wait_for_timeout(150)
-    psi = settled(page, "impulse_marker", "psi")[0]
-    expected = title_of(psi, math.pi / 6, 2.30)
-    assert expected == "Traction: counter-slip", psi
-    assert_title_painted(page, expected)
+    settled(page, "force", "T")
+    psi = psi_of(page)
+    expected = phase_of(psi, math.pi / 6, 2.30)
+    assert expected == "counter-slip", psi
+    assert_phase_painted(page, expected)
     assert errors(console) == []
     page.close()
 
 
 @pytest.mark.parametrize("preset", ["fig6a", "fig6b", "fig6c"])
-def test_the_traction_title_is_painted_after_a_preset(browser, url, preset: str) -> None:
+def test_the_traction_phase_is_painted_after_a_preset(browser, url, preset: str) -> None:
     page, console = open_explorer(browser, url)
     page.locator("select").first.select_option(label=PRESETS[preset].label)
     p = PRESETS[preset]
-    assert_title_painted(page, title_of(p.psi, p.tau0, p.tau))
+    assert_phase_painted(page, phase_of(p.psi, p.tau0, p.tau))
     assert errors(console) == []
     page.close()
 
 
-def test_the_traction_title_is_painted_after_a_typed_tau(browser, url) -> None:
+def test_the_traction_phase_is_painted_after_a_typed_tau(browser, url) -> None:
     page, console = open_explorer(browser, url)
     box = page.locator("input.bk-input").nth(4)  # tau
     box.fill("2.5")
     box.press("Enter")
-    assert_title_painted(page, title_of(math.sqrt(2) + 1, math.pi / 6, 2.5))
+    assert_phase_painted(page, phase_of(math.sqrt(2) + 1, math.pi / 6, 2.5))
     assert errors(console) == []
     page.close()

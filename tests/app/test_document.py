@@ -80,7 +80,7 @@ def assert_sources_match_core(ex: Explorer) -> None:
     stick = (np.abs(r) <= b) & (b > 0)
     eq(d["stick_hi"], np.where(stick, c.pressure(r, tau), 0.0))
     phase = PHASE_NAMES[int(c.phase(tau))]
-    assert ex.traction.figure.title.text.endswith(phase)
+    assert ex.traction.phase_label.text == phase
 
     d = ex.disc.source.data
     assert d["inner"] == [0.0, b] and d["outer"] == [b, a]
@@ -292,7 +292,7 @@ def test_fig6_presets_walk_through_the_phases(ex: Explorer) -> None:
     assert ex.disc.source.data["inner"][1] == 0.0
     assert ex.disc.source.data["label"][1] == "counter-slip"
     assert ex.formulas.object.startswith("**Counter-slip (τ₁ ≤ τ")
-    assert ex.traction.figure.title.text == "Traction: counter-slip"
+    assert ex.traction.phase_label.text == "counter-slip"
     assert max(ex.traction.source.data["stick_hi"]) == 0.0  # no stick sliver drawn
 
 
