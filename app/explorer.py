@@ -25,6 +25,9 @@ from panel.io import hold
 
 from app.formulas import formulas
 from app.methods import MethodsScene
+from app.motor import FIELDS as MOTOR_FIELDS
+from app.motor import PREFIX as MOTOR_PREFIX
+from app.motor import MotorScene
 from app.phases import STYLES
 from app.player import Player, frame_index, frame_taus
 from app.scenes import (
@@ -71,8 +74,12 @@ class Explorer:
                  query: dict | None = None) -> None:
         self.state = state or ExplorerState()
         self.messages: list[str] = []
+        query = query or {}
+        #: the Motor scene's part of the URL (applied when the scene is built)
+        self._motor_query = {k: v for k, v in query.items() if k.startswith(MOTOR_PREFIX)}
         if query:
-            values, self.messages = parse_query(query)
+            values, self.messages = parse_query(
+                {k: v for k, v in query.items() if k not in self._motor_query})
             self._apply_query(values)
         self.contact: Contact = self.state.contact()
         self._callback = None
@@ -91,6 +98,7 @@ class Explorer:
                                     self.radii, self.motion]
         self.readout = ReadoutScene()
         self.methods = MethodsScene()
+        self.motor: MotorScene | None = None  # built when its card is first opened
         self.player = Player(self.traction, self.disc, [self.force, self.radii, self.motion],
                              self.traction.caption, self.traction.phase_label,
                              self.traction.figure, self._now_texts)
@@ -118,7 +126,14 @@ class Explorer:
         self.tabbed: list[Scene] = [self.force, self.impulse, self.radii, self.motion]
         self._stale: set[Scene] = set()
         self.tabs.param.watch(self._on_tab, ["active"])
+        self.follow_motor = pn.widgets.Checkbox(
+            label="The plots above show the contact at the rotor's x₀", value=True)
+        self.motor_card = pn.Card(title="Motor: the rod, its thrust and speed (Fig. 1)",
+                                  collapsed=True, sizing_mode="stretch_width", margin=6)
+        self.motor_card.param.watch(self._on_motor_card, "collapsed")
         self.refresh()
+        if self._motor_query:  # a link to the motor opens it
+            self.motor_card.collapsed = False
 
     # ------------------------------------------------------------------ state
 
@@ -190,6 +205,32 @@ class Explorer:
         self._set_silently(**updates)
         self.psi_slider.disabled = self.tau0_slider.disabled = self.state.physical
         self.refresh()
+
+    # ------------------------------------------------------------------ motor
+
+    def _on_motor_card(self, event) -> None:
+        """Build the Motor scene when its card is first opened."""
+        if event.new or self.motor is not None:
+            return
+        self.motor = MotorScene()
+        messages = self.motor.apply_query(self._motor_query)
+        self.motor.on_contact(self._follow_motor)
+        self.motor.state.param.watch(lambda *_: self._write_url(),
+                                     [*MOTOR_FIELDS, "rod_preset", "rotor_preset"])
+        self.follow_motor.param.watch(lambda e: self._follow_motor(self.motor.contact),
+                                      "value")
+        self.motor_card.objects = [self.follow_motor, self.motor]
+        self._follow_motor(self.motor.contact)
+        if messages:  # the link's refused motor values (after following, which clears)
+            self.show_messages([*self.messages, *messages])
+
+    def _follow_motor(self, contact: tuple[float, float] | None) -> None:
+        """The scenes above show the rotor's contact (psi, tau0 at x0; its mu, nu)."""
+        if contact is None or not self.follow_motor.value:
+            return
+        psi, tau0 = contact
+        m = self.motor.state
+        self.state.param.update(physical=False, psi=psi, tau0=tau0, mu=m.mu, nu=m.nu)
 
     def _on_preset(self, event) -> None:
         """The selector and the T(tau) family follow the state's preset ('' once left)."""
@@ -539,7 +580,10 @@ class Explorer:
         self._put_url(loc)
 
     def _put_url(self, loc) -> None:
-        loc.search = "?" + urlencode(self.state.query())
+        query = self.state.query()
+        if self.motor is not None:
+            query.update(self.motor.query())
+        loc.search = "?" + urlencode(query)
 
     def view(self) -> pn.template.BootstrapTemplate:
         """The page: controls in the sidebar, scenes in the main area."""
@@ -573,6 +617,7 @@ class Explorer:
                 card(self.tabs, title="Curves over the contact", flex="1 1 100%"),
                 sizing_mode="stretch_width", align_content="flex-start"),
             self.methods.view(),
+            self.motor_card,
         ]
         template = pn.template.BootstrapTemplate(
             title="Zharii (1996): two elastic spheres in intermittent frictional contact",
@@ -592,10 +637,12 @@ class Explorer:
         return page
 
     def close(self, session_context) -> None:
-        """The session ended: stop the animation's tick and the Methods runs."""
+        """The session ended: stop the animation's tick, the Methods and Motor runs."""
         if self._callback is not None:
             self._callback.stop()
         self.methods.close()
+        if self.motor is not None:
+            self.motor.close()
 
 
 def build_explorer(query: dict | None = None) -> Explorer:

@@ -561,3 +561,35 @@ def test_missing_numerics_shows_a_note(monkeypatch: pytest.MonkeyPatch) -> None:
     assert "not available" in card.objects[0].object
     ex.psi_slider.value = 3.0  # the rest still works
     assert_sources_match_core(ex)
+
+
+# ------------------------------------------------------------------- motor
+
+
+def test_the_motor_card_is_built_when_opened_and_drives_the_scenes(ex: Explorer) -> None:
+    assert ex.motor is None  # nothing built or computed until the card opens
+    ex.motor_card.collapsed = False
+    assert ex.motor is not None
+    psi, tau0 = ex.motor.contact
+    m = ex.motor.state
+    assert (ex.state.psi, ex.state.tau0, ex.state.mu, ex.state.nu) == (psi, tau0, m.mu, m.nu)
+    assert_sources_match_core(ex)
+    assert {"motor_x0", "motor_rod", "motor_rotor"} <= set(
+        {**ex.state.query(), **ex.motor.query()})
+    ex.follow_motor.value = False  # the scenes keep their own parameters
+    ex.psi_slider.value = 3.0
+    x0 = ex.motor.state.x0
+    ex.motor.state.x0 = x0 / 2
+    assert ex.motor.contact[0] != psi and ex.state.psi == 3.0
+    ex.follow_motor.value = True  # and follow again
+    assert ex.state.psi == ex.motor.contact[0]
+
+
+def test_a_motor_link_opens_the_motor_and_restores_it() -> None:
+    ex = Explorer(query={"motor_x0": "-0.2", "motor_rotor": "alumina"})
+    assert not ex.motor_card.collapsed and ex.motor is not None
+    assert ex.messages == [] and not ex.message.visible
+    assert ex.motor.query()["motor_x0"] == "-0.2"
+    assert ex.motor.query()["motor_rotor"] == "alumina"
+    bad = Explorer(query={"motor_x0": "abc"})
+    assert bad.message.visible and "motor" in bad.message.object
