@@ -360,7 +360,7 @@ class Explorer:
             self._start_player(self._progress_of(self.clock_tau()))
 
     def _on_playing(self, event) -> None:
-        self.play_button.label = "⏸ Pause" if event.new else "▶ Play"
+        self.play_button.label = "‖ Pause" if event.new else "▶ Play"
         self.play_button.color = "warning" if event.new else "success"
         if event.new:
             self._start_player(self._progress_of(self.state.tau))
@@ -625,6 +625,7 @@ class Explorer:
             sidebar=[pn.Column(*sidebar, sizing_mode="stretch_width")],
             main=[pn.Column(*main, sizing_mode="stretch_width")],
             sidebar_width=380, header_background="#0072B2",
+            meta_viewport="width=device-width, initial-scale=1",
             busy_indicator=None)  # its per-message restyling slows every frame
         template.config.raw_css.append(CSS)
         return template

@@ -23,8 +23,10 @@ class PhaseStyle:
     ring_color: str
 
 
-#: Okabe-Ito colours (colour-blind safe); the stick disc is always the full-stick green.
-_GREY, _GREEN, _ORANGE, _SKY, _BLUE = "#999999", "#009E73", "#E69F00", "#56B4E9", "#0072B2"
+#: Okabe-Ito hues (colour-blind safe), darkened where needed for a contrast of at least
+#: 3:1 on white (WCAG, for the phase name drawn in its colour); the stick disc is always
+#: the full-stick green.
+_GREY, _GREEN, _ORANGE, _SKY, _BLUE = "#767676", "#009E73", "#C26A00", "#2E86C1", "#0072B2"
 
 STYLES: dict[Phase, PhaseStyle] = {
     Phase.NO_CONTACT: PhaseStyle(PHASE_NAMES[Phase.NO_CONTACT], _GREY, "slip", _GREY),
@@ -38,6 +40,14 @@ STYLES: dict[Phase, PhaseStyle] = {
 
 #: Colour of the stick disc.
 STICK_COLOR = STYLES[Phase.FULL_STICK].color
+
+
+def contrast_on_white(color: str) -> float:
+    """WCAG 2 contrast ratio of `color` ('#rrggbb') on white."""
+    def linear(c: float) -> float:
+        return c / 12.92 if c <= 0.03928 else ((c + 0.055) / 1.055) ** 2.4
+    r, g, b = (linear(int(color[i:i + 2], 16) / 255) for i in (1, 3, 5))
+    return 1.05 / (0.2126 * r + 0.7152 * g + 0.0722 * b + 0.05)
 
 
 def style(phase: int) -> PhaseStyle:

@@ -146,8 +146,9 @@ class ExplorerState(param.Parameterized):
                           log_psi=p.log_psi, preset=name)
 
     def reset(self) -> None:
-        """Back to the defaults (the default preset), animation stopped."""
+        """Back to the defaults (the default preset, speed 1), animation stopped."""
         self.playing = False
+        self.speed = self.param.speed.default
         self.apply_preset(DEFAULT_PRESET)
 
     def apply_material(self, name: str) -> None:

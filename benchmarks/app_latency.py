@@ -143,7 +143,7 @@ def measure(url: str, moves: int, seconds: float, width: int = 1600,
                                timeout=15_000)
         page.wait_for_timeout(1000)
         fps = page.evaluate(JS_FPS, seconds * 1000)
-        page.get_by_role("button", name="⏸ Pause").click()
+        page.get_by_role("button", name="‖ Pause").click()
         browser.close()
     ok = sorted(t for t in times if t == t)
     if not ok:

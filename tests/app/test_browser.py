@@ -202,7 +202,7 @@ def test_animation_advances(browser, url) -> None:
     for _ in range(30):
         seen.add(column(page, "force_marker", "x")[0])
         page.wait_for_timeout(50)
-    page.get_by_role("button", name="⏸ Pause").click()
+    page.get_by_role("button", name="‖ Pause").click()
     assert len(seen) >= 5, seen
     stopped = settled(page, "force_marker", "x")
     page.wait_for_timeout(500)
@@ -232,7 +232,7 @@ def test_play_starts_right_after_slider_moves(browser, url) -> None:
         x0 = column(page, "force_marker", "x")[0]
         page.wait_for_function("(v) => __col('force_marker', 'x')[0] !== v", arg=x0,
                                timeout=10_000)
-        page.get_by_role("button", name="⏸ Pause").click()
+        page.get_by_role("button", name="‖ Pause").click()
         page.wait_for_function("() => (__col('frames', 'tau') || []).length === 0",
                                timeout=10_000)
     assert errors(console) == []

@@ -18,10 +18,11 @@ from bokeh.models import Range1d
 import app.explorer
 import app.widgets
 from app.explorer import CONTACT_SECONDS, Explorer
+from app.phases import STYLES, contrast_on_white
 from app.player import frame_index, frame_taus
 from app.scenes import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
 from app.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
-from core import PHASE_NAMES, Contact, impulse_ratio
+from core import PHASE_NAMES, Contact, Phase, impulse_ratio
 
 eq = np.testing.assert_array_equal
 
@@ -298,10 +299,11 @@ def test_fig6_presets_walk_through_the_phases(ex: Explorer) -> None:
 
 def test_reset_restores_defaults(ex: Explorer) -> None:
     ex.psi_slider.value = 9.0
+    ex.speed_slider.value = 2.5
     ex.state.playing = True
     ex.reset_button.clicks += 1
     assert ex.state.psi == SQRT2_1 and ex.state.preset == DEFAULT_PRESET
-    assert not ex.state.playing
+    assert not ex.state.playing and ex.state.speed == 1.0
     assert_sources_match_core(ex)
 
 
@@ -593,3 +595,17 @@ def test_a_motor_link_opens_the_motor_and_restores_it() -> None:
     assert ex.motor.query()["motor_rotor"] == "alumina"
     bad = Explorer(query={"motor_x0": "abc"})
     assert bad.message.visible and "motor" in bad.message.object
+
+
+@pytest.mark.parametrize("phase", list(Phase))
+def test_phase_colours_read_on_white(phase: Phase) -> None:
+    look = STYLES[phase]
+    assert contrast_on_white(look.color) >= 3.0
+    assert contrast_on_white(look.ring_color) >= 3.0
+    assert look.name == PHASE_NAMES[phase]  # the name says it without colour
+
+
+def test_contrast_ratio_matches_wcag_examples() -> None:
+    assert contrast_on_white("#000000") == pytest.approx(21.0)
+    assert contrast_on_white("#ffffff") == pytest.approx(1.0)
+    assert contrast_on_white("#767676") == pytest.approx(4.54, abs=0.01)  # WebAIM's value
