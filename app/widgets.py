@@ -99,8 +99,9 @@ class ExactSlider(pn.viewable.Viewer):
     @param.depends("value", watch=True)
     def _show_value(self) -> None:
         v = self.value
-        self.param.update(start=min(self.start, v), end=max(self.end, v))
-        self._slider.param.update(start=self.start, end=self.end, value=v)
+        if not self.start <= v <= self.end:  # widen the range (`_show_range` follows)
+            self.param.update(start=min(self.start, v), end=max(self.end, v))
+        self._slider.value = v  # (Panel sends only what changed)
         self._entry.value = self._text(v)
 
     @param.depends("error", watch=True)
