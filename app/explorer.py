@@ -23,12 +23,12 @@ import numpy as np
 import panel as pn
 from panel.io import hold
 
+from app import export, layout
 from app.formulas import formulas
 from app.methods import MethodsScene
 from app.motor import FIELDS as MOTOR_FIELDS
 from app.motor import PREFIX as MOTOR_PREFIX
 from app.motor import MotorScene
-from app.phases import STYLES
 from app.player import Player, frame_index, frame_taus
 from app.scenes import (
     DiscScene,
@@ -42,29 +42,13 @@ from app.scenes import (
 )
 from app.state import PRESETS, ExplorerState, parse_query, parse_tau, parse_value
 from app.widgets import ExactSlider
-from core import Contact, Phase
+from core import Contact
 
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
 SLOW_UPDATE_S = 0.5  # while playing, the server moves scrubber and formulas this often (s)
 URL_DELAY_S = 0.4  # the URL follows the parameters this long after the last change (s)
 
 
-#: Colour key of the contact disc (the figure has no legend, see DiscScene).
-DISC_KEY = " ".join(
-    f'<span style="color:{STYLES[p].color}; font-size: 1.3em">●</span> {name}'
-    for p, name in ((Phase.FULL_STICK, "stick"), (Phase.SLIP, "slip"),
-                    (Phase.COUNTER_SLIP, "counter-slip")))
-
-#: The warning box above the plots (rejected URL values).
-MESSAGE_STYLE = {"background": "#fff3cd", "color": "#664d03", "border": "1px solid #ffe69c",
-                 "border-radius": "6px", "padding": "0.6em 1em"}
-
-#: Large type for a projector; a little smaller on a phone.
-CSS = """
-:root { --bokeh-font-size: 17px; }
-html { font-size: 17px; }
-@media (max-width: 700px) { :root { --bokeh-font-size: 15px; } html { font-size: 15px; } }
-"""
 
 
 class Explorer:
@@ -431,7 +415,7 @@ class Explorer:
                                      sizing_mode="stretch_width")
 
         self.message = pn.pane.HTML("", visible=False, sizing_mode="stretch_width",
-                                    name="query_message", styles=MESSAGE_STYLE)
+                                    name="query_message", styles=layout.MESSAGE_STYLE)
         self.show_messages(self.messages)
         self.formulas = pn.pane.Markdown("", sizing_mode="stretch_width")
         self.downloads = {
@@ -513,35 +497,19 @@ class Explorer:
         'traction' (the profile at the current tau) or 'impulse' (the impulse curve)."""
         self.catch_up(self.tabbed)  # a hidden tab's data too, as it is now
         if key == "curves":
-            table = self.force.table()
-            for scene in (self.radii, self.motion):
-                extra = scene.table()
-                np.testing.assert_array_equal(extra.pop("tau"), table["tau"])
-                table.update(extra)
-            sc = self.contact.scales
-            if sc is not None:
-                table.update(t_s=table["tau"] * sc.period / (2 * math.pi),
-                             T_N=table["T"] * sc.T0,
-                             muP_N=table["muP"] * sc.T0, a_m=table["a"] * sc.a_star,
-                             b_m=table["b"] * sc.a_star,
-                             approach_m=table["approach"] * sc.alpha_star,
-                             u2_m=table["u2"] * sc.u0, v2_m_per_s=table["v2"] * sc.v_star)
+            table = export.curves_table(self.force, self.radii, self.motion,
+                                        self.contact.scales)
         elif key == "traction":
             table = self.traction.table()
         elif key == "impulse":
             table = self.impulse.table()
         else:
             raise KeyError(key)
-        names = list(table)
-        body = np.column_stack([np.asarray(table[n], float) for n in names])
-        out = io.StringIO()
-        np.savetxt(out, body, delimiter=",", header=",".join(names), comments="", fmt="%.10g")
-        return out.getvalue()
+        return export.csv_text(table)
 
     def csv_filename(self, key: str) -> str:
         """The CSV file's name, after the parameters it holds."""
-        c = self.contact
-        return f"zharii_{key}_psi{c.psi:.4g}_tau0_{c.tau0:.4g}_mu{c.mu:g}_nu{c.nu:g}.csv"
+        return export.file_name(key, self.contact)
 
     def csv_file(self, key: str) -> io.StringIO:
         """The CSV as a file object, for `pn.widgets.FileDownload` (called on a click).
@@ -586,49 +554,8 @@ class Explorer:
         loc.search = "?" + urlencode(query)
 
     def view(self) -> pn.template.BootstrapTemplate:
-        """The page: controls in the sidebar, scenes in the main area."""
-        sidebar = [
-            self.preset_select,
-            pn.Row(self.reset_button, self.downloads["curves"]),
-            self.psi_slider, self.tau0_slider, self.mu_slider, self.nu_slider,
-            pn.pane.Markdown("### Time"),
-            self.tau_slider,
-            pn.Row(self.play_button, self.step_button),
-            self.speed_slider,
-            self.log_box,
-            self.physical_card,
-            pn.Row(self.downloads["traction"], self.downloads["impulse"]),
-        ]
-
-        def card(*objs, title: str, flex: str = "1 1 520px") -> pn.Card:
-            return pn.Card(*objs, title=title, collapsible=False, margin=6,
-                           styles={"flex": flex, "min-width": "0"})
-
-        main = [
-            self.message,
-            pn.FlexBox(
-                card(pn.pane.Bokeh(self.traction.figure, sizing_mode="stretch_width"),
-                     title="Traction profile (Fig. 6)", flex="3 1 560px"),
-                card(pn.pane.Bokeh(self.disc.figure), pn.pane.HTML(DISC_KEY),
-                     title="Contact disc", flex="0 0 380px"),
-                card(self.formulas, title="Formulas of the current phase", flex="2 1 480px"),
-                card(pn.pane.Bokeh(self.readout.figure, sizing_mode="stretch_width"),
-                     title="Derived quantities", flex="1 1 380px"),
-                card(self.tabs, title="Curves over the contact", flex="1 1 100%"),
-                sizing_mode="stretch_width", align_content="flex-start"),
-            self.methods.view(),
-            self.motor_card,
-        ]
-        template = pn.template.BootstrapTemplate(
-            title="Zharii (1996): two elastic spheres in intermittent frictional contact",
-            # one root each: Bokeh rescans the whole document for every root it adds
-            sidebar=[pn.Column(*sidebar, sizing_mode="stretch_width")],
-            main=[pn.Column(*main, sizing_mode="stretch_width")],
-            sidebar_width=380, header_background="#0072B2",
-            meta_viewport="width=device-width, initial-scale=1",
-            busy_indicator=None)  # its per-message restyling slows every frame
-        template.config.raw_css.append(CSS)
-        return template
+        """The page (`app.layout.page`)."""
+        return layout.page(self)
 
     def servable(self) -> pn.template.BootstrapTemplate:
         """Mark the page servable (the `panel serve` entry point calls this)."""

@@ -9,6 +9,7 @@ import base64
 import io
 import itertools
 import math
+import re
 
 import numpy as np
 import pytest
@@ -383,7 +384,9 @@ def read_csv(text: str) -> dict[str, np.ndarray]:
 
 
 def test_csv_curves_hold_the_plotted_data(ex: Explorer) -> None:
-    table = read_csv(ex.csv_text("curves"))
+    text = ex.csv_text("curves")
+    assert not re.search(r"(^|,)-0(,|$)", text, re.MULTILINE)  # no negative zeros
+    table = read_csv(text)
     assert list(table) == ["tau", "T", "muP", "neg_muP", "approach", "a", "b", "v2", "u2",
                            "drive_v", "drive_u"]
     c = contact_of(ex)
