@@ -3,7 +3,7 @@ of elastic spheres", Wear 38 (1976) 101-114).
 
 The contact disc r < a* is split into n equal rings carrying uniform tangential
 tractions tau_i. Tangential compliance: the axisymmetric part of Cerruti's point-force
-solution (the non-axisymmetric terms dropped as in eqs 13-14, physics.md), i.e. a
+solution (the non-axisymmetric terms dropped as in eqs 13-14, docs/physics.md), i.e. a
 surface kernel (2 - nu) / (4 pi G rho) per body. Its ring integrals are the classical
 uniform-disc results (Johnson, Contact Mechanics, eq 3.30 with (1 - nu^2)/E replaced by
 (2 - nu)/(4 G)): a unit traction on the disc r < c displaces the surface of each body by

@@ -3,7 +3,7 @@ in Contact Mechanics and Friction", Springer 2015, ch. 2-3 and 8), compiled with
 
 The 3D contact of two spheres is replaced by a row of N independent springs on a rigid
 1D profile g(x) = x^2 / R* (R* = R / 2), normal stiffness E* dx with E* = G / (1 - nu),
-tangential stiffness G* dx with G* = 2 G / (2 - nu) (two identical bodies; physics.md).
+tangential stiffness G* dx with G* = 2 G / (2 - nu) (two identical bodies; docs/physics.md).
 The indentation d = alpha (eq 8) gives the spring compressions w(x) = d - g(x) and the
 contact radius a^2 = R* d (eq 7). The tangential rule, per spring and time step:
 

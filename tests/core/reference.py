@@ -1,4 +1,4 @@
-"""High-precision references written straight from the paper's formulas (physics.md), in
+"""High-precision references written straight from the paper's formulas (docs/physics.md), in
 mpmath at 60 digits (more where eq 11 itself cancels). Float inputs are taken as exact."""
 
 from __future__ import annotations
