@@ -60,7 +60,8 @@ def served():
 def _alive(kind: type, *, but: tuple = ()) -> int:
     """How many objects of `kind` are alive, those in `but` (other tests') not counted."""
     gc.collect()
-    return sum(isinstance(o, kind) and not any(o is b for b in but) for o in gc.get_objects())
+    # type(), not isinstance(): a dead weak proxy among gc's objects raises on isinstance
+    return sum(type(o) is kind and not any(o is b for b in but) for o in gc.get_objects())
 
 
 def _wait_for_no_sessions(server, timeout: float = 30.0) -> None:
@@ -91,7 +92,7 @@ KINDS = (Explorer, ExplorerState, MethodsScene, Document)
 def test_sessions_leave_nothing_behind(served) -> None:
     url, server = served
     gc.collect()
-    elsewhere = tuple(o for o in gc.get_objects() if isinstance(o, Explorer))  # other tests'
+    elsewhere = tuple(o for o in gc.get_objects() if type(o) is Explorer)  # other tests'
     _load(url)  # warm up: imports, caches, the first session's lazy state
     _wait_for_no_sessions(server)
     before = {k: _alive(k, but=elsewhere) for k in KINDS}
