@@ -1,4 +1,4 @@
-"""The explorer: controls and scenes assembled into a Panel template.
+"""The explorer: controls and scenes assembled into one page (`app.layout`).
 
 `Explorer` wires an `ExplorerState` (what the user set) to the scenes (what is shown):
 a parameter change rebuilds the `core.Contact` once and lets every scene refresh its
@@ -417,7 +417,8 @@ class Explorer:
         self.message = pn.pane.HTML("", visible=False, sizing_mode="stretch_width",
                                     name="query_message", styles=layout.MESSAGE_STYLE)
         self.show_messages(self.messages)
-        self.formulas = pn.pane.Markdown("", sizing_mode="stretch_width")
+        self.formulas = pn.pane.LaTeX("", renderer="katex", sizing_mode="stretch_width",
+                                      styles={"overflow-x": "auto"})  # long equations scroll
         self.downloads = {
             key: pn.widgets.FileDownload(callback=lambda key=key: self.csv_file(key),
                                          filename=f"{key}.csv", label=f"CSV: {key}",
@@ -553,14 +554,16 @@ class Explorer:
             query.update(self.motor.query())
         loc.search = "?" + urlencode(query)
 
-    def view(self) -> pn.template.BootstrapTemplate:
+    def view(self) -> pn.Column:
         """The page (`app.layout.page`)."""
         return layout.page(self)
 
-    def servable(self) -> pn.template.BootstrapTemplate:
-        """Mark the page servable (the `panel serve` entry point calls this)."""
-        page = self.view().servable()
-        if pn.state.curdoc is not None:
+    def servable(self) -> pn.Column:
+        """Mark the page servable (the application script `app/main.py` calls this)."""
+        page = self.view().servable(title=layout.TITLE)
+        doc = pn.state.curdoc
+        if doc is not None:
+            doc.template_variables["meta"] = layout.META
             pn.state.on_session_destroyed(self.close)
         return page
 

@@ -1,11 +1,14 @@
 # ruff: noqa: E501  (LaTeX lines are kept whole)
-"""The formulas of each contact phase, as Markdown with LaTeX (rendered by KaTeX).
+"""The formulas of each contact phase, as HTML with $$...$$ LaTeX (rendered in the
+browser by KaTeX, which Panel bundles: `pn.pane.LaTeX`).
 
-Text only: these are the paper's equations (Zharii 1996, as restated in
-the project's physics brief), shown beside the plots; nothing here is evaluated.
+Text only: these are the paper's equations (Zharii 1996, restated in docs/physics.md),
+shown beside the plots; nothing here is evaluated.
 """
 
 from __future__ import annotations
+
+from html import escape
 
 from core import PHASE_NAMES, Phase
 
@@ -47,10 +50,14 @@ $$T = -T_0 (\sin\tau - \sin\tau_0)^{3/2}$$
 
 
 def formulas(phase: int) -> str:
-    """Markdown (with $$...$$ math) for the contact phase `phase` (a core.Phase code)."""
+    """HTML (with $$...$$ math, one paragraph each) for the contact phase `phase` (a
+    core.Phase code)."""
     phase = Phase(int(phase))
     when, body = _PHASES[phase]
     name = PHASE_NAMES[phase]
     title = f"{name[0].upper()}{name[1:]}" + (f" ({when})" if when else "")
     common = _COMMON if phase else ""
-    return f"**{title}**\n{body}{common}"
+    paragraphs = [" ".join(block.split("\n")).strip()
+                  for block in f"{body}\n{common}".split("\n\n") if block.strip()]
+    return f"<p><b>{escape(title)}</b></p>" + "".join(
+        f"<p>{escape(text, quote=False)}</p>" for text in paragraphs)

@@ -39,8 +39,23 @@ def card(*objs, title: str, flex: str = "1 1 520px") -> pn.Card:
                    styles={"flex": flex, "min-width": "0"})
 
 
-def page(ex: Explorer) -> pn.template.BootstrapTemplate:
-    """The explorer's page."""
+#: The page's title (browser tab and header).
+TITLE = "Zharii (1996): two elastic spheres in intermittent frictional contact"
+
+#: The header bar.
+HEADER_STYLE = {"background": "#0072B2", "color": "white", "padding": "0.4em 1em",
+                "font-size": "1.3em", "font-weight": "bold"}
+
+#: <meta> tags of the page (Bokeh's page template reads them from the document).
+META = {"viewport": "width=device-width, initial-scale=1",
+        "description": "Interactive exact solution of two elastic spheres in intermittent "
+                       "oblique frictional contact (O. Yu. Zharii, 1996)"}
+
+
+def page(ex: Explorer) -> pn.Column:
+    """The explorer's page: a header, the controls in a sidebar, the scenes beside it (a
+    plain Panel layout: a template's header, modal and theming tripled the server's work
+    per page load); on a narrow screen the sidebar stacks above the scenes."""
     sidebar = [
         ex.preset_select,
         pn.Row(ex.reset_button, ex.downloads["curves"]),
@@ -53,7 +68,6 @@ def page(ex: Explorer) -> pn.template.BootstrapTemplate:
         ex.physical_card,
         pn.Row(ex.downloads["traction"], ex.downloads["impulse"]),
     ]
-
     main = [
         ex.message,
         pn.FlexBox(
@@ -69,14 +83,12 @@ def page(ex: Explorer) -> pn.template.BootstrapTemplate:
         ex.methods.view(),
         ex.motor_card,
     ]
-    template = pn.template.BootstrapTemplate(
-        title="Zharii (1996): two elastic spheres in intermittent frictional contact",
-        # one root each: Bokeh rescans the whole document for every root it adds
-        sidebar=[pn.Column(*sidebar, sizing_mode="stretch_width")],
-        main=[pn.Column(*main, sizing_mode="stretch_width")],
-        sidebar_width=380, header_background="#0072B2",
-        meta_viewport="width=device-width, initial-scale=1",
-        busy_indicator=None)  # its per-message restyling slows every frame
-    template.config.raw_css.append(CSS)
-    return template
-
+    if CSS not in pn.config.raw_css:  # once per process
+        pn.config.raw_css.append(CSS)
+    return pn.Column(
+        pn.pane.HTML(TITLE, styles=HEADER_STYLE, sizing_mode="stretch_width", margin=0),
+        pn.FlexBox(
+            pn.Column(*sidebar, styles={"flex": "0 1 370px", "min-width": "0"}),
+            pn.Column(*main, styles={"flex": "1 1 600px", "min-width": "0"}),
+            flex_wrap="wrap", align_items="flex-start", sizing_mode="stretch_width"),
+        sizing_mode="stretch_width")

@@ -170,8 +170,9 @@ class TractionScene(Scene):
         # the phase, in its colour, drawn with the data: BokehJS does not always repaint a
         # changed Title (its new text showed only after a resize), a Label on the overlay
         # level is painted with every frame
-        self.phase_label = Label(x=0, y=0, text="", text_baseline="top",
-                                 text_font_size="15pt", text_font_style="bold",
+        self.phase_label = Label(x=0, y=0, text="", text_baseline="bottom",
+                                 text_align="center", text_font_size="17pt",
+                                 text_font_style="bold",
                                  background_fill_color="white", background_fill_alpha=0.8,
                                  name="traction_phase", level=FRAME_LEVEL)
         fig.add_layout(self.phase_label)
@@ -185,7 +186,7 @@ class TractionScene(Scene):
         self.figure.x_range.start, self.figure.x_range.end = -1.1 * a_max, 1.1 * a_max
         self.figure.y_range.start, self.figure.y_range.end = -1.6 * p_max, 1.6 * p_max
         self.caption.x, self.caption.y = 1.08 * a_max, 1.55 * p_max
-        self.phase_label.x, self.phase_label.y = -1.08 * a_max, 1.55 * p_max
+        self.phase_label.x, self.phase_label.y = 0.0, -1.55 * p_max  # bottom centre
 
     def profiles(self, c: Contact, taus: np.ndarray) -> dict[str, np.ndarray]:
         """The profile at each of the K times `taus`: columns of shape (K, L).

@@ -43,6 +43,7 @@ def test_page_loads_without_console_errors_and_screenshot(browser, url) -> None:
     T = column(page, "force", "T")
     assert len(T) > 300 and max(T) > 0 > min(T)
     assert page.get_by_text("Partial stick (π/2 < τ < τ₁").is_visible()
+    assert page.locator(".katex-display").count() >= 4  # the formulas are typeset
     ARTIFACTS.mkdir(exist_ok=True)
     shot = ARTIFACTS / "explorer.png"
     page.screenshot(path=str(shot), full_page=True)

@@ -293,7 +293,7 @@ def test_fig6_presets_walk_through_the_phases(ex: Explorer) -> None:
     assert contact_of(ex).tau1 == ex.state.tau == pytest.approx(3 * math.pi / 4, rel=1e-15)
     assert ex.disc.source.data["inner"][1] == 0.0
     assert ex.disc.source.data["label"][1] == "counter-slip"
-    assert ex.formulas.object.startswith("**Counter-slip (τ₁ ≤ τ")
+    assert ex.formulas.object.startswith("<p><b>Counter-slip (τ₁ ≤ τ")
     assert ex.traction.phase_label.text == "counter-slip"
     assert max(ex.traction.source.data["stick_hi"]) == 0.0  # no stick sliver drawn
 
