@@ -97,17 +97,16 @@ class Explorer:
         self.state.param.watch(self._on_playing, ["playing"])
         self.state.param.watch(self._on_speed, ["speed"])
         self.impulse.set_log(self.state.log_psi)
-        self.impulse_pane = pn.pane.Bokeh(self.impulse.figure, sizing_mode="stretch_width")
-        #: the curve scenes share one card, one tab each; only the open tab is drawn
-        #: (and computed: the others catch up when their tab is opened)
-        self.tabs = pn.Tabs(
-            ("T(τ) (Fig. 7)", pn.pane.Bokeh(self.force.figure, sizing_mode="stretch_width")),
-            ("Impulse (Fig. 8)", self.impulse_pane),
-            ("Radii (Fig. 4b)", pn.pane.Bokeh(self.radii.figure, sizing_mode="stretch_width")),
-            ("Centre motion (Fig. 9)",
-             pn.pane.Bokeh(self.motion.figure, sizing_mode="stretch_width")),
-            dynamic=True, sizing_mode="stretch_width")
+        #: the curve scenes share one card, one tab each; only the open tab is drawn and
+        #: computed (the others catch up when their tab is opened) and a scene's figure is
+        #: built when its tab is first opened
         self.tabbed: list[Scene] = [self.force, self.impulse, self.radii, self.motion]
+        self.panes = [pn.pane.Bokeh(sizing_mode="stretch_width") for _ in self.tabbed]
+        self.impulse_pane = self.panes[1]
+        self.tabs = pn.Tabs(*zip(("T(τ) (Fig. 7)", "Impulse (Fig. 8)", "Radii (Fig. 4b)",
+                                  "Centre motion (Fig. 9)"), self.panes, strict=True),
+                            dynamic=True, sizing_mode="stretch_width")
+        self._show_figure(0)
         self._stale: set[Scene] = set()
         self.tabs.param.watch(self._on_tab, ["active"])
         self.follow_motor = pn.widgets.Checkbox(
@@ -136,7 +135,15 @@ class Explorer:
         return scene not in self.tabbed or self.tabbed[self.tabs.active] is scene
 
     def _on_tab(self, event) -> None:
-        self.catch_up([self.tabbed[event.new]])
+        with hold():
+            self.catch_up([self.tabbed[event.new]])
+            self._show_figure(event.new)
+
+    def _show_figure(self, tab: int) -> None:
+        """Put tab `tab`'s figure in its pane (built on first use)."""
+        figure = self.tabbed[tab].figure
+        if self.panes[tab].object is not figure:
+            self.panes[tab].object = figure
 
     def catch_up(self, scenes: list[Scene]) -> None:
         """Bring those of `scenes` that missed changes while hidden up to date."""
@@ -282,10 +289,10 @@ class Explorer:
     def _on_log(self, event) -> None:
         self.impulse.set_log(event.new)
         self._stale.add(self.impulse)
-        with hold():
-            self.impulse_pane.object = self.impulse.figure
-            if self.shown(self.impulse):
+        if self.shown(self.impulse):
+            with hold():
                 self.catch_up([self.impulse])
+                self._show_figure(self.tabbed.index(self.impulse))
         self._write_url()
 
     # -------------------------------------------------------------- animation

@@ -16,6 +16,7 @@ current-tau markers live in `<name>_marker`.
 from __future__ import annotations
 
 import math
+from functools import cached_property
 
 import numpy as np
 from bokeh.models import (
@@ -264,6 +265,13 @@ class CurveScene(Scene):
         super().__init__({"tau": [], **{col: [] for col, *_ in self.curves}})
         self.marker = ColumnDataSource({"x": [], "y": [], "color": [], "lo": [], "hi": []},
                                        name=f"{self.name}_marker")
+
+    @cached_property
+    def figure(self):
+        """The plot, built on first use (a scene in a closed tab may never need it)."""
+        return self._make_figure()
+
+    def _make_figure(self):
         fig = _figure(self.title, "τ = ωt (rad)", self.y_label)
         lines = [fig.line("tau", col, source=self.source, color=color, line_width=3,
                           line_dash=dash, level=FRAME_LEVEL, name=f"{self.name}_{col}")
@@ -279,7 +287,7 @@ class CurveScene(Scene):
         fig.segment(x0="x", y0="lo", x1="x", y1="hi", source=self.marker, line_color="#666666",
                     line_width=2, line_dash="dotted", level=FRAME_LEVEL)
         _style(fig)
-        self.figure = fig
+        return fig
 
     def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
         """Values of every curve at the times tau (an array)."""
@@ -322,8 +330,12 @@ class ForceScene(CurveScene):
         self.family = ColumnDataSource({"xs": [], "ys": [], "label": [], "color": []},
                                        name="force_family")
         self._family: list[tuple] = []
-        self.figure.multi_line("xs", "ys", source=self.family, color="color", line_width=2,
-                               line_alpha=0.7, legend_field="label")
+
+    def _make_figure(self):
+        fig = super()._make_figure()
+        fig.multi_line("xs", "ys", source=self.family, color="color", line_width=2,
+                       line_alpha=0.7, legend_field="label")
+        return fig
 
     def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
         line = c.at(tau)
@@ -401,9 +413,21 @@ class ImpulseScene(Scene):
         self.marker = ColumnDataSource({"psi": [], "ratio": []}, name="impulse_marker")
         self.log = False
         self._shown: tuple = ()  # (tau0, log, first psi, last psi) of the curve shown
-        self.linear_figure = self._make("linear")
-        self.log_figure = self._make("log")
-        self.figure = self.linear_figure
+
+    @cached_property
+    def linear_figure(self):
+        """The plot with a linear psi axis, built on first use."""
+        return self._make("linear")
+
+    @cached_property
+    def log_figure(self):
+        """The plot with a logarithmic psi axis, built on first use."""
+        return self._make("log")
+
+    @property
+    def figure(self):
+        """The plot shown: `log_figure` or `linear_figure`."""
+        return self.log_figure if self.log else self.linear_figure
 
     def _make(self, axis: str):
         x_range = Range1d(*self.LOG_RANGE) if axis == "log" else Range1d(0.0, self.LINEAR_MAX)
@@ -418,7 +442,6 @@ class ImpulseScene(Scene):
     def set_log(self, log: bool) -> None:
         """Pick the log-psi figure (True) or the linear one (False) as `figure`."""
         self.log = log
-        self.figure = self.log_figure if log else self.linear_figure
 
     def psi_grid(self, psi: float) -> np.ndarray:
         """The psi values plotted: screen-fine, through psi = 1 (the peak), reaching psi.
