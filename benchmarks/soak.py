@@ -24,9 +24,9 @@ resident memory (RSS) of that process:
 
 Bounded: loopback only, one session at a time, every wait has a timeout, and the long
 session stops at ``--budget`` seconds (default 900) whatever count it reached.  A move
-costs the server 60-90 ms on the shared 2-core machine, so the default counts take
-about 4 minutes for (a) and 10-15 minutes for (b); ``--changes 2000`` gives a
-5-minute look at (b).
+takes 60-90 ms from change to update on the shared 2-core machine, so the default
+counts take about 4-5 minutes for (a) and 12-15 minutes for (b); ``--changes 2000``
+gives a 3-minute look at (b).
 
     .venv/bin/python benchmarks/soak.py                       # both parts, default counts
     .venv/bin/python benchmarks/soak.py --loads 50 --changes 2000 --json soak.json
