@@ -7,22 +7,28 @@ from __future__ import annotations
 
 import asyncio
 import gc
+import sys
 import threading
 import time
+import tracemalloc
 import urllib.request
 from argparse import Namespace
+from pathlib import Path
 
 import pytest
 from bokeh.document import Document
 from explorer_browser import free_port
 from panel.io.server import get_server
 from test_security import _connect, _server_info
+from tornado.httpclient import AsyncHTTPClient
 from tornado.ioloop import IOLoop
 
 from app.explorer import Explorer
 from app.methods import MethodsScene
 from app.serve import MAIN, server_options
 from app.state import ExplorerState
+
+ROOT = Path(__file__).resolve().parents[2]
 
 LIFETIME_MS = 1500  # unused sessions are discarded after this (app/serve.py: 20 s)
 
@@ -105,3 +111,33 @@ def test_sessions_leave_nothing_behind(served) -> None:
     after = {k: _alive(k, but=elsewhere) for k in KINDS}
     assert after == before, f"sessions left objects behind: {before} -> {after}"
     assert before[Explorer] == 0  # the warm-up session's explorer is gone too
+
+
+def test_slider_moves_in_one_session_hold_no_more_python_memory(served) -> None:
+    """A thousand psi moves over Bokeh's protocol (benchmarks/load_test.py's client) leave
+    the Python heap where it was: tracemalloc sees no growth beyond a few arrays' worth
+    (what the server's RSS adds over a long soak is the allocator's, see docs/deploy.md)."""
+    url, _ = served
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from load_test import Session
+
+    async def moves() -> int:
+        session = Session(url, AsyncHTTPClient(), 10.0, None)
+        await session.open()
+        try:
+            for _ in range(200):  # warm: caches, the first arrays of each size
+                await session.move()
+            gc.collect()
+            tracemalloc.start()
+            before = tracemalloc.take_snapshot()
+            for _ in range(1000):
+                await session.move()
+            gc.collect()
+            after = tracemalloc.take_snapshot()
+            tracemalloc.stop()
+        finally:
+            session.close()
+        return sum(s.size_diff for s in after.compare_to(before, "filename"))
+
+    grown = asyncio.run(moves())
+    assert grown < 100_000, f"1000 moves left {grown} bytes of Python objects behind"
