@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import re
 import statistics
 import subprocess
 import sys
@@ -143,7 +144,7 @@ def measure(url: str, moves: int, seconds: float, width: int = 1600,
                                timeout=15_000)
         page.wait_for_timeout(1000)
         fps = page.evaluate(JS_FPS, seconds * 1000)
-        page.get_by_role("button", name="‖ Pause").click()
+        page.get_by_role("button", name=re.compile("Pause")).click()
         browser.close()
     ok = sorted(t for t in times if t == t)
     if not ok:
