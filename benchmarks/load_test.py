@@ -45,7 +45,6 @@ import os
 import random
 import re
 import signal
-import socket
 import statistics
 import subprocess
 import sys
@@ -59,6 +58,11 @@ from tornado.httpclient import AsyncHTTPClient, HTTPRequest
 from tornado.websocket import WebSocketClosedError, websocket_connect
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests" / "app"))
+
+from explorer_browser import free_port  # noqa: E402
+from explorer_browser import wait_for_http as wait_http  # noqa: E402
+
 TOKEN = re.compile(r'\\?"token\\?":\s*\\?"([^"\\]+)')
 PSI_LABEL = re.compile(r"^\s*ψ(\s|=|$)")
 
@@ -420,28 +424,6 @@ async def run_levels(url: str, levels: list[int], duration: float, warmup: float
 
 
 # ---------------------------------------------------------------- servers to test
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def wait_http(url: str, timeout: float = 90) -> None:
-    import urllib.request
-
-    end = time.time() + timeout
-    while True:
-        try:
-            with urllib.request.urlopen(url, timeout=5) as r:
-                if r.status == 200:
-                    return
-        except OSError:
-            pass
-        if time.time() > end:
-            raise TimeoutError(f"{url} did not answer within {timeout:g} s")
-        time.sleep(0.3)
 
 
 def serve(procs: int) -> tuple[subprocess.Popen, str]:
