@@ -265,6 +265,9 @@ class CurveScene(Scene):
         super().__init__({"tau": [], **{col: [] for col, *_ in self.curves}})
         self.marker = ColumnDataSource({"x": [], "y": [], "color": [], "lo": [], "hi": []},
                                        name=f"{self.name}_marker")
+        #: the paper's landmarks on the time axis: tau0, pi/2, tau1 (psi > 1), pi - tau0
+        self.landmarks = ColumnDataSource({"x": [], "label": [], "lo": [], "hi": []},
+                                          name=f"{self.name}_landmarks")
 
     @cached_property
     def figure(self):
@@ -273,6 +276,11 @@ class CurveScene(Scene):
 
     def _make_figure(self):
         fig = _figure(self.title, "τ = ωt (rad)", self.y_label)
+        fig.segment(x0="x", y0="lo", x1="x", y1="hi", source=self.landmarks,
+                    line_color="#bbbbbb", line_width=1, line_dash="dashed")
+        fig.text("x", "hi", text="label", source=self.landmarks, text_align="center",
+                 text_baseline="top", text_font_size="12pt", text_color="#555555",
+                 y_offset=2)
         lines = [fig.line("tau", col, source=self.source, color=color, line_width=3,
                           line_dash=dash, level=FRAME_LEVEL, name=f"{self.name}_{col}")
                  for col, _, color, dash in self.curves]
@@ -299,6 +307,11 @@ class CurveScene(Scene):
         self.source.data = inline({"tau": tau, **columns})
         fit_range(self.figure.x_range, tau, pad=0.02)
         fit_range(self.figure.y_range, *columns.values(), pad=0.03, snap=True)
+        marks = [(c.tau0, "τ₀"), (math.pi / 2, "π/2"), (c.tau1, "τ₁"), (c.tau_end, "π−τ₀")]
+        marks = [(x, label) for x, label in marks if not math.isnan(x)]
+        y = self.figure.y_range
+        self.landmarks.data = {"x": [x for x, _ in marks], "label": [lb for _, lb in marks],
+                               "lo": [y.start] * len(marks), "hi": [y.end] * len(marks)}
 
     def update_tau(self, c: Contact, tau: float) -> None:
         values = self.columns(c, np.array([tau]))

@@ -191,7 +191,7 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
     changed = {(type(e.model).__name__, e.model.name, getattr(e, "attr", "data"))
                for e in events}
     data = {("ColumnDataSource", n, "data") for n in (
-        "traction", "disc", "force", "force_marker", "readout")}
+        "traction", "disc", "force", "force_marker", "force_landmarks", "readout")}
     assert changed == data | {("Label", "traction_caption", "text"),
                               ("Slider", None, "value"), ("TextInput", None, "value"),
                               ("TextInput", None, "value_input")}
@@ -616,3 +616,16 @@ def test_contrast_ratio_matches_wcag_examples() -> None:
     assert contrast_on_white("#000000") == pytest.approx(21.0)
     assert contrast_on_white("#ffffff") == pytest.approx(1.0)
     assert contrast_on_white("#767676") == pytest.approx(4.54, abs=0.01)  # WebAIM's value
+
+
+@pytest.mark.parametrize("psi", [0.4, SQRT2_1])
+def test_time_axes_mark_the_papers_landmarks(ex: Explorer, psi: float) -> None:
+    ex.psi_slider.value = psi
+    assert_sources_match_core(ex)  # opens every tab
+    c = contact_of(ex)
+    expected = [c.tau0, math.pi / 2, *([] if psi <= 1 else [c.tau1]), c.tau_end]
+    for scene in (ex.force, ex.radii, ex.motion):
+        d = scene.landmarks.data
+        assert d["x"] == expected
+        assert d["label"] == ["τ₀", "π/2", *([] if psi <= 1 else ["τ₁"]), "π−τ₀"]
+        assert d["hi"] == [scene.figure.y_range.end] * len(expected)
