@@ -102,7 +102,6 @@ class Explorer:
         #: built when its tab is first opened
         self.tabbed: list[Scene] = [self.force, self.impulse, self.radii, self.motion]
         self.panes = [pn.pane.Bokeh(sizing_mode="stretch_width") for _ in self.tabbed]
-        self.impulse_pane = self.panes[1]
         self.tabs = pn.Tabs(*zip(("T(τ) (Fig. 7)", "Impulse (Fig. 8)", "Radii (Fig. 4b)",
                                   "Centre motion (Fig. 9)"), self.panes, strict=True),
                             dynamic=True, sizing_mode="stretch_width")

@@ -42,14 +42,6 @@ STYLES: dict[Phase, PhaseStyle] = {
 STICK_COLOR = STYLES[Phase.FULL_STICK].color
 
 
-def contrast_on_white(color: str) -> float:
-    """WCAG 2 contrast ratio of `color` ('#rrggbb') on white."""
-    def linear(c: float) -> float:
-        return c / 12.92 if c <= 0.03928 else ((c + 0.055) / 1.055) ** 2.4
-    r, g, b = (linear(int(color[i:i + 2], 16) / 255) for i in (1, 3, 5))
-    return 1.05 / (0.2126 * r + 0.7152 * g + 0.0722 * b + 0.05)
-
-
 def style(phase: int) -> PhaseStyle:
     """The style of phase code `phase` (an int or a 0-d array from `Contact.phase`)."""
     return STYLES[Phase(int(phase))]

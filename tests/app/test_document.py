@@ -19,7 +19,7 @@ from bokeh.models import Range1d
 import app.explorer
 import app.widgets
 from app.explorer import CONTACT_SECONDS, Explorer
-from app.phases import STYLES, contrast_on_white
+from app.phases import STYLES
 from app.player import frame_index, frame_taus
 from app.scenes import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
 from app.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
@@ -148,11 +148,11 @@ def test_log_psi_axis_reaches_1e6(ex: Explorer) -> None:
     ex.log_box.value = True
     psi = np.asarray(ex.impulse.source.data["psi"])
     assert psi.min() <= 1e-3 and psi.max() >= 1e6 and 1.0 in psi
-    assert ex.impulse_pane.object is ex.impulse.log_figure
+    assert ex.panes[ex.tabbed.index(ex.impulse)].object is ex.impulse.log_figure
     assert_sources_match_core(ex)
     ex.log_box.value = False
     assert np.asarray(ex.impulse.source.data["psi"]).max() == pytest.approx(30.0)
-    assert ex.impulse_pane.object is ex.impulse.linear_figure
+    assert ex.panes[ex.tabbed.index(ex.impulse)].object is ex.impulse.linear_figure
 
 
 def test_large_psi_in_linear_mode_extends_the_axis(ex: Explorer) -> None:
@@ -602,6 +602,14 @@ def test_a_motor_link_opens_the_motor_and_restores_it() -> None:
     assert ex.motor.query()["motor_rotor"] == "alumina"
     bad = Explorer(query={"motor_x0": "abc"})
     assert bad.message.visible and "motor" in bad.message.object
+
+
+def contrast_on_white(color: str) -> float:
+    """WCAG 2 contrast ratio of `color` ('#rrggbb') on white."""
+    def linear(c: float) -> float:
+        return c / 12.92 if c <= 0.03928 else ((c + 0.055) / 1.055) ** 2.4
+    r, g, b = (linear(int(color[i:i + 2], 16) / 255) for i in (1, 3, 5))
+    return 1.05 / (0.2126 * r + 0.7152 * g + 0.0722 * b + 0.05)
 
 
 @pytest.mark.parametrize("phase", list(Phase))
