@@ -5,7 +5,8 @@ a parameter change rebuilds the `core.Contact` once and lets every scene refresh
 curves; a change of tau (the scrubber, or an animation frame) refreshes only what
 depends on tau.  All changes of one step are sent to the browser in one message
 (`panel.io.hold`).  The animation is played by the browser from frames computed here
-(`app.player`); a slow server tick keeps the scrubber and the formulas in step.
+(`app.player`), which moves the tau box, the slider and the formulas with the plots;
+the server follows the player's clock.
 """
 
 from __future__ import annotations
@@ -45,7 +46,6 @@ from app.widgets import ExactSlider
 from core import Contact
 
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
-SLOW_UPDATE_S = 0.5  # while playing, the server moves scrubber and formulas this often (s)
 URL_DELAY_S = 0.4  # the URL follows the parameters this long after the last change (s)
 
 
@@ -66,7 +66,6 @@ class Explorer:
                 {k: v for k, v in query.items() if k not in self._motor_query})
             self._apply_query(values)
         self.contact: Contact = self.state.contact()
-        self._callback = None
         self._syncing = False
         self._shown_phase = -1
         self._url_pending = False
@@ -85,8 +84,10 @@ class Explorer:
         self.motor: MotorScene | None = None  # built when its card is first opened
         self.player = Player(self.traction, self.disc, [self.force, self.radii, self.motion],
                              self.traction.caption, self.traction.phase_label,
-                             self.traction.figure, self._now_texts)
-        self._play_start = (0.0, 0.0)  # (progress, time.monotonic()) when play last started
+                             self.traction.figure, self._now_texts,
+                             lambda taus: [self.tau_slider.text(t) for t in taus])
+        #: (progress, time.monotonic(), speed) when the player last (re)started
+        self._play_start = (0.0, 0.0, 1.0)
 
         self._build_widgets()
         self.state.param.watch(self._on_params, ["psi", "tau0", "mu", "nu", "physical", "R",
@@ -179,6 +180,7 @@ class Explorer:
     def _on_params(self, *events) -> None:
         if self._syncing:
             return
+        self._follow_clock()
         try:
             c = self.state.contact()
         except ValueError as err:
@@ -320,9 +322,9 @@ class Explorer:
 
     def clock_tau(self, now: float | None = None) -> float:
         """The tau of the frame the browser's player shows at time `now` (monotonic s)."""
-        progress, started = self._play_start
+        progress, started, speed = self._play_start
         now = time.monotonic() if now is None else now
-        progress += self.state.speed * (now - started) / CONTACT_SECONDS
+        progress += speed * (now - started) / CONTACT_SECONDS
         return float(frame_taus(self.contact)[frame_index(progress)])
 
     def _start_player(self, progress: float) -> None:
@@ -333,43 +335,32 @@ class Explorer:
         made while a message is being written raises in Bokeh and the player never
         starts)."""
         c = self.contact
-        self._play_start = (progress, time.monotonic())
+        self._play_start = (progress, time.monotonic(), self.state.speed)
         with hold():
             self.player.play(c, progress, self.state.speed, CONTACT_SECONDS)
 
-    def _tick(self) -> None:
-        """Slow server tick while playing: scrubber, formulas and state follow the clock."""
-        tau = self.clock_tau()
-        self._set_silently(tau=tau)
-        with hold():
-            self._move_scrubber(tau)
-            self._show_formulas(self.contact, tau)
+    def _follow_clock(self) -> None:
+        """While playing, set the state's tau to the frame the browser shows (the state
+        holds the tau a play started from until then)."""
+        if self.state.playing:
+            self._set_silently(tau=self.clock_tau())
 
     def _on_speed(self, event) -> None:
         if self.state.playing:  # keep the current frame, change the pace
-            self._start_player(self._progress_of(self.clock_tau()))
+            self._follow_clock()
+            self._start_player(self._progress_of(self.state.tau))
 
     def _on_playing(self, event) -> None:
         self.play_button.label = "‖ Pause" if event.new else "▶ Play"
         self.play_button.color = "warning" if event.new else "success"
         if event.new:
             self._start_player(self._progress_of(self.state.tau))
-            doc = pn.state.curdoc
-            if doc is not None and doc.session_context is not None:
-                if self._callback is None:
-                    self._callback = pn.state.add_periodic_callback(
-                        self._tick, period=int(SLOW_UPDATE_S * 1000))
-                elif not self._callback.running:
-                    self._callback.start()
-        else:
-            if self._callback is not None and self._callback.running:
-                self._callback.stop()
-            tau = self.clock_tau()
-            self._set_silently(tau=tau)
-            with hold():  # one message: the player stops and the plots settle on its frame
-                self.player.stop()
-                self.update_tau()
-            self._write_url()
+            return
+        self._set_silently(tau=self.clock_tau())
+        with hold():  # one message: the player stops and the plots settle on its frame
+            self.player.stop()
+            self.update_tau()
+        self._write_url()
 
     # ------------------------------------------------------------------- view
 
@@ -384,8 +375,8 @@ class Explorer:
                                  step=step, parse=partial(parse_value, name), name=name)
             self._bind(widget, name)
             setattr(self, f"{name}_slider", widget)
-        # not bound both ways: while playing it is refreshed only every
-        # SLOW_UPDATE_S, to spare the browser a widget re-render per frame
+        # not bound both ways: while playing, the browser's player moves it (the state
+        # keeps the tau the play started from)
         self.tau_slider = ExactSlider(
             label="τ = ωt (rad): time", value=s.tau, start=self.contact.tau0,
             end=self.contact.tau_end, step=0.002,
@@ -423,8 +414,9 @@ class Explorer:
         self.message = pn.pane.HTML("", visible=False, sizing_mode="stretch_width",
                                     name="query_message", styles=layout.MESSAGE_STYLE)
         self.show_messages(self.messages)
-        self.formulas = pn.pane.LaTeX("", renderer="katex", sizing_mode="stretch_width",
-                                      styles={"overflow-x": "auto"})  # long equations scroll
+        self.formulas = pn.pane.LaTeX(  # (long equations scroll)
+            "", renderer="katex", sizing_mode="stretch_width", styles={"overflow-x": "auto"},
+            tags=["formulas"])
         self.downloads = {
             key: pn.widgets.FileDownload(callback=lambda key=key: self.csv_file(key),
                                          filename=f"{key}.csv", label=f"CSV: {key}",
@@ -574,9 +566,7 @@ class Explorer:
         return page
 
     def close(self, session_context) -> None:
-        """The session ended: stop the animation's tick, the Methods and Motor runs."""
-        if self._callback is not None:
-            self._callback.stop()
+        """The session ended: stop the Methods and Motor runs."""
         self.methods.close()
         if self.motor is not None:
             self.motor.close()

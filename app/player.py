@@ -5,9 +5,17 @@ script then paints them at the browser's own frame rate, copying each frame into
 plotted arrays in place, so no message crosses the websocket per frame (a server-paced
 animation tops out near 10 frames/s on a modest machine; this one runs at the display's
 rate). Every number still comes from `core`, computed on the server by the scenes'
-own vectorised methods; the script only copies them. The server follows the same clock
-(progress = start + speed * elapsed / CONTACT_SECONDS) for the scrubber, the formulas and
-the tau a pause lands on.
+own vectorised methods; the script only copies them.
+
+Everything that depends on tau moves in the same frame: the plots, the caption, the
+phase label, the tau box and slider, and the formula card (at a phase change).  The
+script writes those texts with BokehJS's public `setv(..., {sync: false})`: the
+browser does not send 60 changes a second back to the server, which goes on holding
+the values it last sent.  The script remembers those values (and any the server sends
+while it plays) and puts them back when it stops, so that after a pause the page shows
+exactly what the server holds, and every later change of the server's is drawn.  The
+server follows the same clock (progress = start + speed * elapsed / CONTACT_SECONDS)
+for the tau a pause, a speed change or a parameter change lands on.
 """
 
 from __future__ import annotations
@@ -19,25 +27,55 @@ import numpy as np
 from bokeh.models import ColumnDataSource, CustomJS, Label
 from bokeh.plotting import figure as Figure
 
+from app.formulas import formulas
 from app.phases import style
 from app.scenes import CurveScene, DiscScene, TractionScene
-from core import Contact
+from core import Contact, Phase
 
 FRAMES_PER_CONTACT = 240  # one contact at speed 1 in CONTACT_SECONDS: 60 frames/s at 4 s
 
 _PLAY_JS = """
-const st = window.__zharii_player || (window.__zharii_player = {raf: null});
+const st = window.__zharii_player ||
+  (window.__zharii_player = {raf: null, held: null, writing: false, watched: new Set()});
 if (st.raf !== null) { cancelAnimationFrame(st.raf); st.raf = null; }
 const get = (src) => (src.data instanceof Map ? Object.fromEntries(src.data) : src.data);
+// the texts this script shows while it plays: [model, property] (controls found on
+// the page by the server; absent in a document without them)
+const texts = [[caption, "text"], [phase_label, "text"], [phase_label, "text_color"]];
+for (const [m, a] of [[entry, "value"], [slider, "value"], [formula, "text"]]) {
+  if (m) { texts.push([m, a]); }
+}
+const key = (m, a) => m.id + ":" + a;
+function put(m, a, v) {                        // shown here, not sent to the server
+  st.writing = true;
+  try { m.setv({[a]: v}, {sync: false}); } finally { st.writing = false; }
+}
 const F = get(frames);
 const K = F.tau ? F.tau.length : 0;
-if (K === 0) { return; }                       // stopped by the server
+if (K === 0) {                                 // stopped: show what the server holds
+  if (st.held !== null) {
+    for (const [m, a, v] of st.held.values()) { put(m, a, v); }
+    st.held = null;
+  }
+  return;
+}
+if (st.held === null) { st.held = new Map(); }
+for (const [m, a] of texts) {                  // what the server holds, kept up to date
+  const k = key(m, a);
+  if (!st.held.has(k)) { st.held.set(k, [m, a, m[a]]); }
+  if (!st.watched.has(k)) {
+    st.watched.add(k);
+    m.properties[a].change.connect(() => {
+      if (st.held !== null && !st.writing) { st.held.set(k, [m, a, m[a]]); }
+    });
+  }
+}
 const P = get(profiles);
 const L = P.r.length / K;
 const names = ["r", "traction", "upper", "lower", "stick_lo", "stick_hi"];
 const seconds = F.seconds[0], speed = F.speed[0], start = F.start[0];
 const t0 = performance.now();
-let last = -1, phase = -1, texted = -1e9;
+let last = -1, phase = -1;
 function draw(k) {
   const T = get(traction);
   for (const n of names) { const dst = T[n], src = P[n];
@@ -52,10 +90,14 @@ function draw(k) {
     for (let i = 0; i < cols.length; i++) { M.x[i] = F.tau[k]; M.y[i] = F[cols[i]][k]; }
     markers[j].change.emit();
   }
+  put(caption, "text", F.caption[k]);
+  if (entry) { put(entry, "value", F.tau_text[k]); }
+  if (slider) { put(slider, "value", F.tau[k]); }
   if (F.phase[k] !== phase) {                  // a few times per contact
     phase = F.phase[k];
-    phase_label.text = F.phase_name[k];
-    phase_label.text_color = F.phase_color[k];
+    put(phase_label, "text", F.phase_name[k]);
+    put(phase_label, "text_color", F.phase_color[k]);
+    if (formula) { put(formula, "text", formulas[phase]); }
   }
 }
 function tick(now) {
@@ -63,11 +105,15 @@ function tick(now) {
   const p = (start + speed * Math.max(0, now - t0) / 1000 / seconds) % 1;
   const k = Math.max(0, Math.min(K - 1, Math.floor(p * K)));
   if (k !== last) { draw(k); last = k; }
-  if (now - texted > 250) { caption.text = F.caption[k]; texted = now; }
   st.raf = requestAnimationFrame(tick);
 }
+last = Math.max(0, Math.min(K - 1, Math.floor(start * K)));
+draw(last);                                    // at once, with this message
 st.raf = requestAnimationFrame(tick);
 """
+
+#: The tags by which the server finds the controls the script writes (`Player.play`).
+CONTROL_TAGS = {"entry": "tau-entry", "slider": "tau-slider", "formula": "formulas"}
 
 
 def frame_taus(c: Contact, n: int = FRAMES_PER_CONTACT) -> np.ndarray:
@@ -85,25 +131,41 @@ class Player:
 
     def __init__(self, traction: TractionScene, disc: DiscScene, curves: list[CurveScene],
                  caption: Label, phase_label: Label, host: Figure,
-                 captions: Callable[[Contact, np.ndarray], list[str]]) -> None:
-        """``captions(c, taus)`` gives the caption text of each frame; `host` is a figure
-        of the page that keeps the frame sources in the document."""
+                 captions: Callable[[Contact, np.ndarray], list[str]],
+                 tau_texts: Callable[[np.ndarray], list[str]]) -> None:
+        """``captions(c, taus)`` gives the caption text of each frame, ``tau_texts(taus)``
+        the tau box's; `host` is a figure of the page that keeps the frame sources in the
+        document."""
         self.traction, self.disc, self.curves = traction, disc, curves
-        self.captions = captions
+        self.captions, self.tau_texts = captions, tau_texts
         self.frames = ColumnDataSource(data={}, name="frames")
         self.profiles = ColumnDataSource(data={}, name="frame_profiles")
         # referenced from a figure, so that both sources are part of the document
         host.tags = [*host.tags, self.frames, self.profiles]
-        self.frames.js_on_change("data", CustomJS(args={
+        self.script = CustomJS(args={
             "frames": self.frames, "profiles": self.profiles, "traction": traction.source,
             "disc": disc.source, "markers": [s.marker for s in curves],
             "marker_columns": [[f"{s.name}:{col}" for col, *_ in s.curves] for s in curves],
             "caption": caption, "phase_label": phase_label,
-        }, code=_PLAY_JS))
+            "formulas": [formulas(p) for p in Phase],
+            **dict.fromkeys(CONTROL_TAGS),
+        }, code=_PLAY_JS)
+        self.frames.js_on_change("data", self.script)
+
+    def _find_controls(self) -> None:
+        """Give the script the page's tau box, tau slider and formula card (Panel builds
+        their models per page: found in the frames' document by their tags)."""
+        doc = self.frames.document
+        if doc is None:
+            return
+        found = {name: doc.select_one({"tags": tag}) for name, tag in CONTROL_TAGS.items()}
+        if any(self.script.args[name] is not model for name, model in found.items()):
+            self.script.args = {**self.script.args, **found}
 
     def play(self, c: Contact, start: float, speed: float, seconds: float) -> None:
         """Send the frames of contact `c` and start the browser's player at progress
         `start` in [0, 1) (profiles first: the script starts on the frames' arrival)."""
+        self._find_controls()
         taus = frame_taus(c)
         self.profiles.data = {k: v.ravel() for k, v in self.traction.profiles(c, taus).items()}
         line = c.at(taus)
@@ -115,6 +177,7 @@ class Player:
             "disc_color": [look.ring_color for look in looks],
             "disc_label": [look.ring for look in looks],
             "caption": self.captions(c, taus),
+            "tau_text": self.tau_texts(taus),
             "phase_name": [look.name for look in looks],
             "phase_color": [look.color for look in looks],
             **{f"{s.name}:{col}": v for s in self.curves for col, v in s.columns(c, taus).items()},

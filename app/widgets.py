@@ -51,9 +51,11 @@ class ExactSlider(pn.viewable.Viewer):
         self._slider = pn.widgets.FloatSlider(
             value=value, start=self.start, end=self.end, step=step,
             show_value=False, sizing_mode="stretch_width", margin=(0, 8, 5, 8),
-            css_classes=[f"slider-{name}"] if name else [])
-        self._entry = pn.widgets.TextInput(label=label, value=self._text(value),
-                                           sizing_mode="stretch_width", margin=(0, 8))
+            css_classes=[f"slider-{name}"] if name else [],
+            tags=[f"{name}-slider"] if name else [])
+        self._entry = pn.widgets.TextInput(label=label, value=self.text(value),
+                                           sizing_mode="stretch_width", margin=(0, 8),
+                                           tags=[f"{name}-entry"] if name else [])
         self._message = pn.pane.HTML("", visible=False, styles=ERROR_STYLE,
                                      margin=(0, 8), sizing_mode="stretch_width",
                                      name=name and f"{name}_error")
@@ -65,7 +67,8 @@ class ExactSlider(pn.viewable.Viewer):
     def __panel__(self) -> pn.Column:
         return self._layout
 
-    def _text(self, v: float) -> str:
+    def text(self, v: float) -> str:
+        """How the box shows the value `v`."""
         return f"{v:.{self._digits}g}"
 
     def _on_slider(self, event: param.parameterized.Event) -> None:
@@ -73,17 +76,17 @@ class ExactSlider(pn.viewable.Viewer):
 
     def _on_entry(self, event: param.parameterized.Event) -> None:
         text = event.new.strip()
-        if text == self._text(self.value):
+        if text == self.text(self.value):
             return  # the box shows the value (set from here, or the refused text reverted)
         try:
             v = self._parse(text)
         except ValueError as err:
             self.error = str(err)
-            self._show_later(self._text(self.value))  # back to the last good value
+            self._show_later(self.text(self.value))  # back to the last good value
             return
         self.error = ""
         if v == self.value:
-            self._show_later(self._text(v))
+            self._show_later(self.text(v))
         self.value = v
 
     def _show_later(self, text: str) -> None:
@@ -102,7 +105,7 @@ class ExactSlider(pn.viewable.Viewer):
         if not self.start <= v <= self.end:  # widen the range (`_show_range` follows)
             self.param.update(start=min(self.start, v), end=max(self.end, v))
         self._slider.value = v  # (Panel sends only what changed)
-        self._entry.value = self._text(v)
+        self._entry.value = self.text(v)
 
     @param.depends("error", watch=True)
     def _show_error(self) -> None:

@@ -240,6 +240,64 @@ def test_play_starts_right_after_slider_moves(browser, url) -> None:
     page.close()
 
 
+#: What the page shows now of tau, read from what is drawn (the DOM of the tau box, the
+#: tau slider's handle and the formula card's title) and the T(tau) marker's position.
+JS_SHOWN_TAU = """() => {
+  const view = (tag) => __views((v) => v.model != null && v.model.tags != null
+      && v.model.tags.includes(tag))[0];
+  const root = (v) => v.el.shadowRoot || v.el;
+  const slider = view("tau-slider");
+  const base = root(slider).querySelector(".noUi-base").getBoundingClientRect();
+  const handle = root(slider).querySelector(".noUi-handle").getBoundingClientRect();
+  const at = (handle.x + handle.width / 2 - base.x) / base.width;  // where it is drawn
+  return {
+    marker: __col("force_marker", "x")[0],
+    box: root(view("tau-entry")).querySelector("input").value,
+    handle: slider.model.start + at * (slider.model.end - slider.model.start),
+    pixel: (slider.model.end - slider.model.start) / base.width,
+    formula: root(view("formulas")).querySelector("b").textContent,
+  };
+}"""
+
+
+def assert_one_tau_shown(shown: dict, psi: float, tau0: float) -> None:
+    """The tau box, the slider and the formula card show the marker's tau and phase."""
+    tau = shown["marker"]
+    assert float(shown["box"]) == pytest.approx(tau, rel=1e-5, abs=1e-6), shown
+    assert shown["handle"] == pytest.approx(tau, abs=2 * shown["pixel"]), shown
+    name = phase_of(psi, tau0, tau)
+    assert shown["formula"].lower().startswith(name.lower()), (shown, name)
+
+
+def test_play_moves_the_tau_box_slider_and_formulas_with_the_plots(browser, url) -> None:
+    """During Play every view of tau shows the frame being drawn (read in one go from
+    the page, many times over more than one contact), and after each pause the page
+    shows what the server holds: the paused frame, also when its phase is the one the
+    play started in (the server then sends no new formulas)."""
+    page, console = open_explorer(browser, url)
+    psi, tau0 = psi_of(page), math.pi / 6
+    assert_one_tau_shown(page.evaluate(JS_SHOWN_TAU), psi, tau0)
+    for play_ms in (4600, 900, 2300):
+        page.get_by_role("button", name="▶ Play").click()
+        page.wait_for_function("() => (__col('frames', 'tau') || []).length > 0",
+                               timeout=10_000)
+        seen = set()
+        for _ in range(play_ms // 100):
+            shown = page.evaluate(JS_SHOWN_TAU)
+            assert_one_tau_shown(shown, psi, tau0)
+            seen.add(shown["formula"].split(" (")[0])
+            page.wait_for_timeout(100)
+        page.get_by_role("button", name="‖ Pause").click()
+        page.wait_for_function("() => (__col('frames', 'tau') || []).length === 0",
+                               timeout=10_000)
+        settled(page, "force_marker", "x")
+        assert_one_tau_shown(page.evaluate(JS_SHOWN_TAU), psi, tau0)
+        if play_ms > 4000:  # a whole contact: every phase of psi > 1 went by
+            assert {"Slip", "Partial stick", "Counter-slip"} <= seen, seen
+    assert errors(console) == []
+    page.close()
+
+
 def test_step_button_moves_tau(browser, url) -> None:
     page, _ = open_explorer(browser, url)
     tau = column(page, "force_marker", "x")[0]

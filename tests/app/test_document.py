@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import base64
 import io
-import itertools
 import math
 import re
 
@@ -19,6 +18,7 @@ from bokeh.models import Range1d
 import app.explorer
 import app.widgets
 from app.explorer import CONTACT_SECONDS, Explorer
+from app.formulas import formulas
 from app.phases import STYLES
 from app.player import frame_index, frame_taus
 from app.scenes import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
@@ -443,22 +443,24 @@ def test_step_button_and_play_toggle(ex: Explorer, monkeypatch) -> None:
     ex.state.tau = c.tau0
     ex.play_button.clicks += 1
     assert ex.state.playing and "Pause" in ex.play_button.label
-    progress, started = ex._play_start
+    progress, started, _ = ex._play_start
     assert progress == 0.0
     now = [started]
     monkeypatch.setattr(app.explorer.time, "monotonic", lambda: now[0])
-    ticks = [ex.state.tau]
-    for _ in range(3):  # the server's tick follows the browser player's clock
-        now[0] += 0.51  # (steps off the frame boundaries: 0.51 s = 30.6 frames)
-        ex._tick()
-        ticks.append(ex.state.tau)
-    assert all(b > a for a, b in itertools.pairwise(ticks))
+    # the browser's player shows the frames; the server follows its clock, and a
+    # parameter change made while playing starts from the frame shown
+    now[0] += 1.53  # (off the frame boundaries: 1.53 s = 91.8 frames)
     expected = frame_taus(c)[frame_index(ex.state.speed * 1.53 / CONTACT_SECONDS)]
-    assert ticks[-1] == expected and ex.tau_slider.value == expected
+    assert ex.clock_tau() == expected and ex.state.tau == c.tau0
+    ex.speed_slider.value = 2.0  # the pace changes, the frame stays
+    assert ex.state.tau == expected and ex._play_start == (ex._progress_of(expected), now[0], 2.0)
+    ex.speed_slider.value = 1.0
     now[0] += 0.23
     ex.play_button.clicks += 1  # pause: the plots settle on the frame being shown
     assert not ex.state.playing and "Play" in ex.play_button.label
-    assert ex.state.tau == frame_taus(c)[frame_index(ex.state.speed * 1.76 / CONTACT_SECONDS)]
+    progress = ex._progress_of(expected) + 0.23 / CONTACT_SECONDS  # at speed 1 again
+    assert ex.state.tau == frame_taus(c)[frame_index(progress)]
+    assert ex.tau_slider.value == ex.state.tau
     assert len(ex.player.frames.data) == 0
     assert_sources_match_core(ex)
 
@@ -478,6 +480,7 @@ def test_play_sends_the_frames_of_the_contact(ex: Explorer) -> None:
     eq(f["radii:b"], c.stick_radius(taus))
     eq(f["motion:u2"], c.centre_displacement(taus))
     assert f["caption"][0].startswith(f"τ = {c.tau0:.4f} rad")
+    assert f["tau_text"] == [ex.tau_slider.text(t) for t in taus]  # the tau box's text
     shape = (taus.size, PROFILE_POINTS + 4)
     r = np.asarray(p["r"]).reshape(shape)
     eq(np.asarray(p["traction"]).reshape(shape), c.traction(r, taus[:, None]))
@@ -488,6 +491,23 @@ def test_play_sends_the_frames_of_the_contact(ex: Explorer) -> None:
     eq(ex.player.frames.data["force:T"], c.tangential_force(frame_taus(c)))
     ex.state.playing = False
     assert len(ex.player.frames.data) == 0 and len(ex.player.profiles.data) == 0
+
+
+def test_the_player_writes_the_pages_tau_box_slider_and_formulas() -> None:
+    """In a page, the player's script is given the models of the tau box, the tau
+    slider and the formula card (found by their tags) and each phase's formulas."""
+    ex = Explorer()
+    doc = Document()
+    doc.add_root(ex.view().get_root(doc))
+    args = ex.player.script.args
+    assert args["entry"] is None  # nothing looked up before Play
+    ex.state.playing = True
+    args = ex.player.script.args
+    assert args["entry"].value == ex.tau_slider.text(ex.state.tau)
+    assert args["slider"].value == ex.state.tau and args["slider"].end == ex.contact.tau_end
+    assert args["formula"].text == formulas(int(ex.contact.phase(ex.state.tau)))
+    assert args["formulas"] == [formulas(p) for p in Phase]
+    assert {args[k].document for k in ("entry", "slider", "formula")} == {doc}
 
 
 # ---------------------------------------------------------- physical units
