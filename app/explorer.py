@@ -41,6 +41,7 @@ from app.scenes import (
     Scene,
     TractionScene,
 )
+from app.spheres import SpheresScene
 from app.state import PRESETS, ExplorerState, parse_query, parse_tau, parse_value
 from app.widgets import ExactSlider
 from core import Contact
@@ -77,15 +78,17 @@ class Explorer:
         self.impulse = ImpulseScene()
         self.radii = RadiiScene()
         self.motion = MotionScene()
-        self.scenes: list[Scene] = [self.traction, self.disc, self.force, self.impulse,
-                                    self.radii, self.motion]
+        self.spheres = SpheresScene()
+        self.scenes: list[Scene] = [self.spheres, self.traction, self.disc, self.force,
+                                    self.impulse, self.radii, self.motion]
         self.readout = ReadoutScene()
         self.methods = MethodsScene()
         self.motor: MotorScene | None = None  # built when its card is first opened
         self.player = Player(self.traction, self.disc, [self.force, self.radii, self.motion],
                              self.traction.caption, self.traction.phase_label,
                              self.traction.figure, self._now_texts,
-                             lambda taus: [self.tau_slider.text(t) for t in taus])
+                             lambda taus: [self.tau_slider.text(t) for t in taus],
+                             sprites=[self.spheres])
         #: (progress, time.monotonic(), speed) when the player last (re)started
         self._play_start = (0.0, 0.0, 1.0)
 

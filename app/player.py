@@ -21,7 +21,8 @@ for the tau a pause, a speed change or a parameter change lands on.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
+from typing import Protocol
 
 import numpy as np
 from bokeh.models import ColumnDataSource, CustomJS, Label
@@ -85,6 +86,12 @@ function draw(k) {
   D.inner[1] = F.b[k]; D.outer[0] = F.b[k]; D.outer[1] = F.a[k];
   D.color[1] = F.disc_color[k]; D.label[1] = F.disc_label[k];
   disc.change.emit();
+  for (const [dst, src, cols] of sprites) {    // scenes drawn from a few rows each
+    const S = get(src), D = get(dst), n = S[cols[0]].length / K;
+    for (const c of cols) { const d = D[c], s = S[c];
+      for (let i = 0; i < n; i++) { d[i] = s[k * n + i]; } }
+    dst.change.emit();
+  }
   for (let j = 0; j < markers.length; j++) {
     const M = get(markers[j]), cols = marker_columns[j];
     for (let i = 0; i < cols.length; i++) { M.x[i] = F.tau[k]; M.y[i] = F[cols[i]][k]; }
@@ -116,6 +123,16 @@ st.raf = requestAnimationFrame(tick);
 CONTROL_TAGS = {"entry": "tau-entry", "slider": "tau-slider", "formula": "formulas"}
 
 
+class Sprite(Protocol):
+    """A scene the player animates by copying rows: its named sources, and what they
+    hold at K times (per source, its columns as arrays of shape (K, n))."""
+
+    sources: dict[str, ColumnDataSource]
+
+    def drawing(self, c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
+        ...
+
+
 def frame_taus(c: Contact, n: int = FRAMES_PER_CONTACT) -> np.ndarray:
     """The n times of the frames, tau0 to pi - tau0 inclusive."""
     return np.linspace(c.tau0, c.tau_end, n)
@@ -132,22 +149,29 @@ class Player:
     def __init__(self, traction: TractionScene, disc: DiscScene, curves: list[CurveScene],
                  caption: Label, phase_label: Label, host: Figure,
                  captions: Callable[[Contact, np.ndarray], list[str]],
-                 tau_texts: Callable[[np.ndarray], list[str]]) -> None:
+                 tau_texts: Callable[[np.ndarray], list[str]],
+                 sprites: Sequence[Sprite] = ()) -> None:
         """``captions(c, taus)`` gives the caption text of each frame, ``tau_texts(taus)``
         the tau box's; `host` is a figure of the page that keeps the frame sources in the
-        document."""
+        document; `sprites` are scenes animated row by row."""
         self.traction, self.disc, self.curves = traction, disc, curves
         self.captions, self.tau_texts = captions, tau_texts
+        self.sprites = list(sprites)
         self.frames = ColumnDataSource(data={}, name="frames")
         self.profiles = ColumnDataSource(data={}, name="frame_profiles")
-        # referenced from a figure, so that both sources are part of the document
-        host.tags = [*host.tags, self.frames, self.profiles]
+        #: the frames of each sprite source, flattened (K * n per column)
+        self.sprite_frames = {name: ColumnDataSource(data={}, name=f"frames_{name}")
+                              for sprite in self.sprites for name in sprite.sources}
+        # referenced from a figure, so that the frame sources are part of the document
+        host.tags = [*host.tags, self.frames, self.profiles, *self.sprite_frames.values()]
         self.script = CustomJS(args={
             "frames": self.frames, "profiles": self.profiles, "traction": traction.source,
             "disc": disc.source, "markers": [s.marker for s in curves],
             "marker_columns": [[f"{s.name}:{col}" for col, *_ in s.curves] for s in curves],
             "caption": caption, "phase_label": phase_label,
             "formulas": [formulas(p) for p in Phase],
+            "sprites": [[source, self.sprite_frames[name], list(source.data)]
+                        for sprite in self.sprites for name, source in sprite.sources.items()],
             **dict.fromkeys(CONTROL_TAGS),
         }, code=_PLAY_JS)
         self.frames.js_on_change("data", self.script)
@@ -168,6 +192,9 @@ class Player:
         self._find_controls()
         taus = frame_taus(c)
         self.profiles.data = {k: v.ravel() for k, v in self.traction.profiles(c, taus).items()}
+        for sprite in self.sprites:
+            for name, cols in sprite.drawing(c, taus).items():
+                self.sprite_frames[name].data = {k: flat(v) for k, v in cols.items()}
         line = c.at(taus)
         phases = line.phase
         looks = [style(p) for p in phases]
@@ -190,3 +217,12 @@ class Player:
         """Stop the browser's player (it stops when the frames are emptied)."""
         self.frames.data = {}
         self.profiles.data = {}
+        for source in self.sprite_frames.values():
+            source.data = {}
+
+
+def flat(values: np.ndarray) -> np.ndarray | list:
+    """An array of shape (K, n) as the K * n values of one column, frame after frame
+    (text as a list of str)."""
+    v = np.asarray(values).ravel()
+    return v.tolist() if v.dtype == object else v

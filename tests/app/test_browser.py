@@ -19,6 +19,7 @@ from explorer_browser import (
     open_explorer,
 )
 
+from app import spheres
 from app.phases import style
 from app.scenes import CURVE_POINTS
 from app.state import PRESETS, ExplorerState, parse_query
@@ -256,6 +257,8 @@ JS_SHOWN_TAU = """() => {
     handle: slider.model.start + at * (slider.model.end - slider.model.start),
     pixel: (slider.model.end - slider.model.start) / base.width,
     formula: root(view("formulas")).querySelector("b").textContent,
+    badge: __col("spheres_badge", "text")[0],
+    patch: __col("spheres_patch", "x1")[2] - __col("spheres_patch", "x0")[0],
   };
 }"""
 
@@ -267,11 +270,17 @@ def assert_one_tau_shown(shown: dict, psi: float, tau0: float) -> None:
     assert shown["handle"] == pytest.approx(tau, abs=2 * shown["pixel"]), shown
     name = phase_of(psi, tau0, tau)
     assert shown["formula"].lower().startswith(name.lower()), (shown, name)
+    assert shown["badge"] == name, (shown, name)  # the spheres scene's phase badge
+    c = Contact(psi, tau0)
+    a_star = math.sqrt(spheres.DRIVE * (1 - math.sin(tau0)) / 2)  # the patch's diameter
+    assert shown["patch"] == pytest.approx(2 * float(c.contact_radius(tau)) * a_star,
+                                           abs=1e-9), shown
 
 
 def test_play_moves_the_tau_box_slider_and_formulas_with_the_plots(browser, url) -> None:
     """During Play every view of tau shows the frame being drawn (read in one go from
-    the page, many times over more than one contact), and after each pause the page
+    the page, many times over more than one contact: the tau box, the slider, the
+    formulas, and the spheres scene's phase badge and contact patch), and after each pause the page
     shows what the server holds: the paused frame, also when its phase is the one the
     play started in (the server then sends no new formulas)."""
     page, console = open_explorer(browser, url)

@@ -17,6 +17,7 @@ from bokeh.models import Range1d
 
 import app.explorer
 import app.widgets
+from app import spheres
 from app.explorer import CONTACT_SECONDS, Explorer
 from app.formulas import formulas
 from app.phases import STYLES
@@ -191,8 +192,10 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
     changed = {(type(e.model).__name__, e.model.name, getattr(e, "attr", "data"))
                for e in events}
     data = {("ColumnDataSource", n, "data") for n in (
-        "traction", "disc", "force", "force_marker", "force_landmarks", "readout")}
+        "traction", "disc", "force", "force_marker", "force_landmarks", "readout",
+        "spheres_drive", "spheres_lower", "spheres_patch", "spheres_forces")}
     assert changed == data | {("Label", "traction_caption", "text"),
+                              ("Label", "spheres_rest_note", "text"),
                               ("Slider", None, "value"), ("TextInput", None, "value"),
                               ("TextInput", None, "value_input")}
     assert ex.state.psi == ex.psi_slider.value == 2.51
@@ -657,3 +660,69 @@ def test_time_axes_mark_the_papers_landmarks(ex: Explorer, psi: float) -> None:
         assert d["x"] == expected
         assert d["label"] == ["τ₀", "π/2", *([] if psi <= 1 else ["τ₁"]), "π−τ₀"]
         assert d["hi"] == [scene.figure.y_range.end] * len(expected)
+
+
+# ---------------------------------------------------------- the two spheres
+
+
+@pytest.mark.parametrize(("psi", "tau0", "tau"), [(SQRT2_1, math.pi / 6, 2.3),
+                                                  (0.5, -0.4, 1.0), (40.0, 1.2, 1.6)])
+def test_the_spheres_are_drawn_from_core(psi: float, tau0: float, tau: float) -> None:
+    """The drawing at tau: the lower sphere moved along its drive line (eq 3), both
+    flattened at the midway plane, the patch of radius a and stick disc b (core's, on the
+    drawn scale), arrows P / P0 and T / T0, the phase named in its colour."""
+    ex = Explorer()
+    ex.state.param.update(psi=psi, tau0=tau0, tau=tau)
+    c, s = contact_of(ex), ex.spheres.sources
+    H, u0 = spheres.drawn_amplitudes(c)
+    assert H == spheres.DRIVE
+    assert u0 == pytest.approx(min(spheres.DRIVE * psi * math.tan(c.theta0), spheres.MAX_SIDE))
+    lower, upper = s["spheres_lower"].data, s["spheres_upper"].data
+    overlap = H * (math.sin(tau) - math.sin(tau0))
+    mid = overlap / 2
+    assert max(lower["y"]) == pytest.approx(mid) and min(upper["y"]) == pytest.approx(mid)
+    centre_x = (max(lower["x"]) + min(lower["x"])) / 2
+    assert centre_x == pytest.approx(u0 * math.sin(tau), abs=1e-12)
+    assert min(lower["y"]) == pytest.approx(-2.0 - H * math.sin(tau0) + H * math.sin(tau))
+    a_star = math.sqrt(H * (1 - math.sin(tau0)) / 2)
+    a, b = float(c.contact_radius(tau)) * a_star, float(c.stick_radius(tau)) * a_star
+    patch = s["spheres_patch"].data
+    xc = centre_x / 2
+    np.testing.assert_allclose(patch["x0"], [xc - a, xc - b, xc + b], atol=1e-12)
+    np.testing.assert_allclose(patch["x1"], [xc - b, xc + b, xc + a], atol=1e-12)
+    look = STYLES[Phase(int(c.phase(tau)))]
+    assert list(patch["color"]) == [look.ring_color, STYLES[Phase.FULL_STICK].color,
+                                    look.ring_color]
+    f = s["spheres_forces"].data
+    P, T = float(c.normal_force(tau)), float(c.tangential_force(tau))
+    np.testing.assert_allclose(np.subtract(f["y1"], f["y0"]), [spheres.ARROW * P, 0], atol=1e-12)
+    np.testing.assert_allclose(np.subtract(f["x1"], f["x0"]), [0, spheres.ARROW * T], atol=1e-12)
+    assert list(f["label"]) == [f"P = {P:.2f} P₀", f"T = {T:+.2f} T₀" if abs(T) > 1e-3 else ""]
+    assert s["spheres_badge"].data["text"] == [look.name]
+    assert s["spheres_badge"].data["color"] == [look.color]
+
+
+def test_the_spheres_note_states_the_scale() -> None:
+    ex = Explorer()
+    assert ex.spheres.note.text == "not to scale: H drawn as 0.15 R"
+    ex.state.param.update(R=0.01, H=2e-6, u0=1e-6, h=1e-6, omega=1e5)
+    ex.physical_box.value = True
+    assert ex.spheres.note.text == f"displacements drawn ×{0.15 * 0.01 / 2e-6:.3g}"
+    ex.physical_box.value = False
+    ex.state.psi = 1e4  # u0 beyond the drawing: shortened, and said so
+    assert ex.spheres.note.text.endswith(
+        f"u₀ shortened to 0.45 R (θ = {math.degrees(ex.contact.theta):.1f}°)")
+
+
+def test_the_player_animates_the_spheres() -> None:
+    """The frames of each spheres source are its drawing at the frame times."""
+    ex = Explorer()
+    ex.state.playing = True
+    c = contact_of(ex)
+    taus = frame_taus(c)
+    for name, cols in spheres.drawing(c, taus).items():
+        data = ex.player.sprite_frames[name].data
+        for col, v in cols.items():
+            assert list(np.asarray(data[col])) == list(v.ravel()), (name, col)
+    ex.state.playing = False
+    assert all(len(src.data) == 0 for src in ex.player.sprite_frames.values())

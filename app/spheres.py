@@ -1,0 +1,207 @@
+"""The physical scene: the two spheres in section (the paper's Fig. 2), synced to tau.
+
+The upper sphere is held; the lower one is driven along its oblique line (eq 3: its
+centre moves by u_x0 = u0 sin tau sideways and u_z0 = H sin tau upwards, at the angle
+theta from the vertical).  While they touch, both are drawn flattened at the plane
+midway between them, with the contact patch of radius a (eq 7) on it: the stick disc
+b (eq 30) in the stick colour, the rest of the patch in the colour of what it does
+(slip or counter-slip).  Arrows give the forces on the upper sphere: P / P0 up (eq 9)
+and T / T0 along the drive (eqs 38, 39; T0 = mu P0), on one length scale.  The badge
+names the phase (`Contact.phase`).
+
+Displacements are exaggerated: the normal amplitude H is drawn as `DRIVE` sphere radii
+and u0 at the true angle theta up to `MAX_SIDE` radii (the scale is stated on the plot).
+The contact patch is drawn with core's a / a* on that exaggerated scale.
+
+Every number comes from `core` through `drawing(c, taus)`, which gives each source's
+columns at K times as arrays of shape (K, n): `update_tau` shows one time, the browser's
+player (`app.player`) copies the frames of a whole contact.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from bokeh.models import ColumnDataSource, Label, Range1d
+from bokeh.plotting import figure
+
+from app.phases import STICK_COLOR, style
+from app.scenes import FRAME_LEVEL, Scene, _style
+from core import Contact
+
+DRIVE = 0.15  # the drawn normal amplitude H, in sphere radii
+MAX_SIDE = 0.45  # the largest drawn tangential amplitude u0, in sphere radii
+ARROW = 0.9  # the drawn length of a force equal to its scale (P0 or T0), in radii
+OUTLINE_POINTS = 97  # points of each sphere's outline
+HEAD_SIZE = 13  # arrow heads, screen pixels
+
+_ANGLES = np.linspace(0.0, 2.0 * math.pi, OUTLINE_POINTS)
+
+
+def drawn_amplitudes(c: Contact) -> tuple[float, float]:
+    """The drawn amplitudes (H, u0) in sphere radii: H is `DRIVE`, u0 follows the angle
+    of incidence (u0 / H = tan theta) up to `MAX_SIDE`."""
+    return DRIVE, min(DRIVE * math.tan(c.theta), MAX_SIDE)
+
+
+def scale_note(c: Contact) -> str:
+    """What the drawing exaggerates, in words."""
+    H, u0 = drawn_amplitudes(c)
+    sc = c.scales
+    if sc is not None:  # SI inputs: the true factor, drawn H / true H (both over R)
+        # a* = sqrt(R (H - h) / 2), alpha* = H - h = H (1 - sin tau0)
+        true_h = sc.alpha_star**2 / (2 * sc.a_star**2 * (1 - math.sin(c.tau0)))
+        note = f"displacements drawn ×{H / true_h:.3g}"
+    else:
+        note = "not to scale: H drawn as 0.15 R"
+    if u0 < DRIVE * math.tan(c.theta):
+        note += f"; u₀ shortened to {MAX_SIDE:g} R (θ = {math.degrees(c.theta):.1f}°)"
+    return note
+
+
+def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
+    """What the scene draws at each of the K times `taus`, in sphere radii: per source
+    name, its columns as arrays of shape (K, n) (n rows per time)."""
+    taus = np.atleast_1d(np.asarray(taus, float))
+    line = c.at(taus)
+    H, u0 = drawn_amplitudes(c)
+    s0 = math.sin(c.tau0)
+    sin_t = np.sin(taus)
+    # centre of the lower sphere (eq 3), the upper one's is (0, 1); its top at rest is
+    # H s0 below the upper sphere's bottom (the gap h, eq 4)
+    cx, cy = u0 * sin_t, -1.0 - H * s0 + H * sin_t
+    touching = line.phase != 0
+    overlap = np.where(touching, np.maximum(H * (sin_t - s0), 0.0), 0.0)
+    # the plane midway between the undeformed surfaces: both are flattened to it
+    mid = overlap / 2
+    cos_a, sin_a = np.cos(_ANGLES), np.sin(_ANGLES)
+    shape = (taus.size, _ANGLES.size)
+    upper_y = np.broadcast_to(1.0 + sin_a, shape)
+    lower_y = cy[:, None] + sin_a
+    upper_y = np.where(touching[:, None], np.maximum(upper_y, mid[:, None]), upper_y)
+    lower_y = np.where(touching[:, None], np.minimum(lower_y, mid[:, None]), lower_y)
+    # the patch: core's a / a* and b / a*, a* drawn as sqrt((H - h) / 2) radii (eq 7)
+    a_star = math.sqrt(H * (1.0 - s0) / 2)
+    a, b = line.contact_radius * a_star, line.stick_radius * a_star
+    xc = cx / 2  # midway between the centres
+    y = mid
+    looks = [style(p) for p in line.phase]
+    ring = np.array([look.ring_color for look in looks], dtype=object)
+    stick = np.full(taus.size, STICK_COLOR, dtype=object)
+    patch = {
+        "x0": np.stack([xc - a, xc - b, xc + b], axis=1),
+        "x1": np.stack([xc - b, xc + b, xc + a], axis=1),
+        "y": np.stack([y, y, y], axis=1),
+        "color": np.stack([ring, stick, ring], axis=1),
+    }
+    P, T = line.normal_force, line.tangential_force
+    shown = np.stack([P, np.abs(T)], axis=1) > 1e-3  # a force drawn with its head
+    labels = np.array([[f"P = {p:.2f} P₀", f"T = {t:+.2f} T₀"] for p, t in zip(P, T,
+                                                                              strict=True)],
+                      dtype=object).reshape(taus.size, 2)
+    tip_x, tip_y = np.stack([xc, xc + ARROW * T], axis=1), np.stack([y + ARROW * P, y], axis=1)
+    forces = {
+        "x0": np.stack([xc, xc], axis=1), "y0": np.stack([y, y], axis=1),
+        "x1": tip_x, "y1": tip_y,
+        # labels: P's beside its tip, T's below its tip
+        "lx": tip_x + np.array([0.08, 0.0]), "ly": tip_y - np.array([0.0, 0.12]),
+        "head": np.where(shown, HEAD_SIZE, 0),
+        # the triangle marker points up; turned to point along T
+        "angle": np.stack([np.zeros_like(T), np.where(T < 0, math.pi / 2, -math.pi / 2)],
+                          axis=1),
+        "label": np.where(shown, labels, ""),
+    }
+    badge = {"text": np.array([[look.name] for look in looks], dtype=object),
+             "color": np.array([[look.color] for look in looks], dtype=object)}
+    return {
+        "spheres_upper": {"x": np.broadcast_to(cos_a, shape), "y": upper_y},
+        "spheres_lower": {"x": cx[:, None] + cos_a[None, :], "y": lower_y},
+        "spheres_patch": patch,
+        "spheres_forces": forces,
+        "spheres_badge": badge,
+    }
+
+
+class SpheresScene(Scene):
+    """The two spheres in section, the drive, the patch, the forces and the phase."""
+
+    name = "spheres"
+
+    def __init__(self) -> None:
+        first = drawing(Contact(0.5, 0.5), np.array([math.pi / 2]))
+        self.sources = {name: ColumnDataSource({k: row(v[0]) for k, v in cols.items()},
+                                               name=name)
+                        for name, cols in first.items()}
+        self.source = self.sources["spheres_lower"]
+        self.still = ColumnDataSource({"x0": [], "y0": [], "x1": [], "y1": []},
+                                      name="spheres_drive")
+        self.rest = ColumnDataSource({"x": [], "y": []}, name="spheres_rest")
+        # equal scales on both axes: the plot area (about 400 x 560 px) spans 3.2 x 4.5
+        fig = figure(title="Two spheres in section", width=420, height=640,
+                     x_range=Range1d(-1.6, 1.6), y_range=Range1d(-2.45, 2.1),
+                     tools="save", toolbar_location="above")
+        fig.axis.visible = False
+        fig.grid.visible = False
+        s = self.sources
+        fig.line("x", "y", source=self.rest, line_dash="dashed", color="#999999",
+                 line_width=1.5)
+        for name, fill in (("spheres_upper", "#d9d9d9"), ("spheres_lower", "#bfbfbf")):
+            fig.patch("x", "y", source=s[name], fill_color=fill, line_color="black",
+                      line_width=2, level=FRAME_LEVEL)
+        fig.segment("x0", "y0", "x1", "y1", source=self.still, line_dash="dotdash",
+                    color="#555555", line_width=2)
+        fig.segment("x0", "y", "x1", "y", source=s["spheres_patch"], color="color",
+                    line_width=9, level=FRAME_LEVEL)
+        fig.segment("x0", "y0", "x1", "y1", source=s["spheres_forces"], color="#a4161a",
+                    line_width=4, level=FRAME_LEVEL)
+        fig.scatter("x1", "y1", source=s["spheres_forces"], marker="triangle", size="head",
+                    angle="angle", color="#a4161a", level=FRAME_LEVEL)
+        fig.text("lx", "ly", text="label", source=s["spheres_forces"], text_font_size="13pt",
+                 text_color="#a4161a", text_baseline="middle", level=FRAME_LEVEL)
+        fig.text(-1.5, 2.05, text="text", source=s["spheres_badge"], text_color="color",
+                 text_font_size="20pt", text_font_style="bold", text_baseline="top",
+                 level=FRAME_LEVEL)
+        self.note = Label(x=-1.55, y=-2.42, text="", text_font_size="11pt",
+                          text_color="#333333", name="spheres_note")
+        self.h_label = Label(x=-1.55, y=-2.05, text="", text_font_size="11pt",
+                             text_color="#333333", name="spheres_rest_note")
+        fig.add_layout(self.note)
+        fig.add_layout(self.h_label)
+        _style(fig)
+        self.figure = fig
+
+    def update_contact(self, c: Contact) -> None:
+        """The drive line, the lower sphere at rest (tau = 0) and the scale note."""
+        H, u0 = drawn_amplitudes(c)
+        rest_top = -H * math.sin(c.tau0)  # the gap h below the upper sphere
+        cy = rest_top - 1.0
+        show(self.rest, {"x": np.cos(_ANGLES), "y": cy + np.sin(_ANGLES)})
+        reach = 1.6  # the drive line, beyond both ends of the stroke
+        show(self.still, {"x0": [-reach * u0], "y0": [cy - reach * H],
+                          "x1": [reach * u0], "y1": [cy + reach * H]})
+        gap = "dashed: at rest, h > 0 (a gap)" if c.tau0 > 0 else \
+            "dashed: at rest, h ≤ 0 (a preload)"
+        self.h_label.text = f"{gap}; drive line at θ = {math.degrees(c.theta):.1f}°"
+        self.note.text = scale_note(c)
+
+    @staticmethod
+    def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
+        """`drawing(c, taus)` (what the browser's player copies, frame by frame)."""
+        return drawing(c, taus)
+
+    def update_tau(self, c: Contact, tau: float) -> None:
+        for name, cols in drawing(c, np.array([tau])).items():
+            show(self.sources[name], {k: row(v[0]) for k, v in cols.items()})
+
+
+def show(source: ColumnDataSource, data: dict) -> None:
+    """Give `source` this data, unless it holds it already (nothing is sent then)."""
+    if data.keys() != source.data.keys() or not all(
+            np.array_equal(np.asarray(source.data[k]), np.asarray(v)) for k, v in data.items()):
+        source.data = data
+
+
+def row(values: np.ndarray) -> np.ndarray | list:
+    """One time's row of a column (text as a list of str)."""
+    return values.tolist() if values.dtype == object else np.ascontiguousarray(values)
