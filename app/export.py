@@ -1,50 +1,174 @@
-"""CSV exports of what the explorer shows: tables of named columns, as text.
+"""CSV exports of what the explorer shows, each file readable on its own.
 
-The curves table joins the T(tau), radii and motion scenes on their common tau grid and,
-when the contact has SI scales (physical inputs), adds each quantity in SI units.
+A file opens with a block of comment lines ('#'): what it holds and its source (Zharii
+1996, with the equation of each column), the app's version, the contact's parameters
+(psi, tau0, mu, nu, written with `repr`: they read back as the very floats the explorer
+used), the SI inputs when the contact was defined by them, and, for the traction profile,
+the time tau it is drawn at.  Parameters are written `# name (unit) = value`.  Then one
+line of column names, each a quantity with its unit (the dimensionless ones as the
+paper's ratios, T/T0, a/a*; SI ones as T (N), a (m)), and the rows: 10 significant
+digits, a negative zero written 0.  `pandas.read_csv(f, comment="#")` reads it as it is.
 """
 
 from __future__ import annotations
 
 import io
-import math
+from collections.abc import Sequence
+from importlib.metadata import PackageNotFoundError, version
 
 import numpy as np
 
-from app.scenes import Scene
+from app.scenes import ForceScene, MotionScene, RadiiScene, TractionScene
 from core import Contact
-from core.physical import Scales
+
+SOURCE = ("O. Yu. Zharii, An exact solution of a time-dependent frictional contact problem"
+          " for two elastic spheres, Int. J. Engng Sci. 34(5), 537-548 (1996)")
+
+#: What each column holds, and where the paper gives it.
+COLUMNS: dict[str, str] = {
+    "tau (rad)": "time tau = omega t (Zharii 1996, eq 3)",
+    "T/T0": "tangential force on the upper sphere, positive along the drive, in"
+            " T0 (Zharii 1996, eqs 38, 39; T0 eq 37)",
+    "mu P/T0": "Coulomb bound +mu P/T0 = P/P0 = (sin tau - sin tau0)^(3/2)"
+               " (Zharii 1996, eq 9)",
+    "-mu P/T0": "Coulomb bound -mu P/T0 (Zharii 1996, eq 9)",
+    "alpha/(H-h)": "approach of the sphere centres (Zharii 1996, eq 8)",
+    "a/a*": "contact radius, a* = sqrt(R (H - h) / 2) (Zharii 1996, eqs 7, 8)",
+    "b/a*": "stick radius: a in full stick, 0 in slip (Zharii 1996, eqs 30, 36)",
+    "v2/(omega u0)": "velocity of the contact centre of the upper sphere"
+                     " (Zharii 1996, eq 42)",
+    "u2/u0": "displacement of the contact centre of the upper sphere (Zharii 1996, eq 43)",
+    "(du_x0/dt)/(omega u0)": "velocity of the drive, cos tau (Zharii 1996, eq 3)",
+    "u_x0/u0": "displacement of the drive, sin tau (Zharii 1996, eq 3)",
+    "t (s)": "time t = tau / omega",
+    "T (N)": "tangential force T (Zharii 1996, eqs 37-39)",
+    "mu P (N)": "Coulomb bound mu P (Zharii 1996, eq 9)",
+    "alpha (m)": "approach of the sphere centres (Zharii 1996, eq 8)",
+    "a (m)": "contact radius (Zharii 1996, eqs 7, 8)",
+    "b (m)": "stick radius (Zharii 1996, eqs 30, 36)",
+    "v2 (m/s)": "velocity of the contact centre of the upper sphere (Zharii 1996, eq 42)",
+    "u2 (m)": "displacement of the contact centre of the upper sphere (Zharii 1996, eq 43)",
+    "r/a*": "position along x through the contact centre (signed radius r)",
+    "tau_u/(mu p*)": "tangential traction on the upper sphere, p* = 4 G a* / ((1 - nu) pi R)"
+                     " (Zharii 1996, eqs 18, 24, 33, 36)",
+    "p/p*": "contact pressure; also the Coulomb bound mu p in units of mu p*"
+            " (Zharii 1996, eq 6)",
+    "stick": "1 in the stick disc |r| <= b, 0 in slip and outside contact"
+             " (Zharii 1996, eqs 30, 36)",
+    "r (m)": "position along x through the contact centre",
+    "tau_u (Pa)": "tangential traction on the upper sphere (Zharii 1996, eqs 18, 24, 33, 36)",
+    "p (Pa)": "contact pressure (Zharii 1996, eq 6)",
+    "psi": "drive ratio tan theta / tan theta0 (Zharii 1996, eq 23)",
+    "T_imp/(mu P_imp)": "tangential impulse of one contact over mu times its normal"
+                        " impulse, at the contact's tau0 (Zharii 1996, eq 41; T_imp eq 40,"
+                        " P_imp eq 10)",
+}
+
+#: What each file holds (its first comment line).
+TITLES = {
+    "curves": "the curves over one contact, on the tau grid of the T(tau) plot"
+              " (Figs. 4b, 7, 9)",
+    "traction": "the traction profile across the contact at one time tau (Fig. 6)",
+    "impulse": "the impulse ratio against psi at the contact's tau0 (Fig. 8)",
+}
+
+#: The contact's parameters and the SI inputs, with their units ('' dimensionless).
+PARAMETERS = (("psi", ""), ("tau0", "rad"), ("mu", ""), ("nu", ""))
+SI_INPUTS = (("R", "m"), ("G", "Pa"), ("H", "m"), ("u0", "m"), ("h", "m"),
+             ("omega", "rad/s"))
 
 
-def curves_table(force: Scene, radii: Scene, motion: Scene,
-                 scales: Scales | None) -> dict[str, np.ndarray]:
-    """T/T0 and +-mu P/T0, approach, a, b and the centre's motion on one tau grid, plus
-    SI columns (t_s, T_N, ...) when `scales` is given."""
+def app_version() -> str:
+    """The installed version of the zharii-contact package, or 'unknown'."""
+    try:
+        return version("zharii-contact")
+    except PackageNotFoundError:
+        return "unknown"
+
+
+def curves_table(force: ForceScene, radii: RadiiScene, motion: MotionScene,
+                 c: Contact) -> dict[str, np.ndarray]:
+    """T/T0 and +-mu P/T0, the approach, a, b and the centre's motion on the tau grid
+    (rad) of the T(tau) plot, the contact's, plus the same in SI units (t (s), T (N), ...)
+    when `c` has SI scales.  A scene plotted at further times too (the motion, before and
+    after the contact and beside its jumps) gives its rows at that grid."""
     table = force.table()
+    tau = table["tau (rad)"]
     for scene in (radii, motion):
         extra = scene.table()
-        if not np.array_equal(extra.pop("tau"), table["tau"]):
-            raise ValueError(f"the {scene.name} scene is on another tau grid than T(tau)")
-        table.update(extra)
-    if scales is not None:
-        sc = scales
-        table.update(t_s=table["tau"] * sc.period / (2 * math.pi), T_N=table["T"] * sc.T0,
-                     muP_N=table["muP"] * sc.T0, a_m=table["a"] * sc.a_star,
-                     b_m=table["b"] * sc.a_star, approach_m=table["approach"] * sc.alpha_star,
-                     u2_m=table["u2"] * sc.u0, v2_m_per_s=table["v2"] * sc.v_star)
+        times = extra.pop("tau (rad)")
+        rows = np.isin(times, tau)
+        if not np.array_equal(times[rows], tau):
+            raise ValueError(f"the {scene.name} scene lacks times of the T(tau) grid")
+        table.update({name: values[rows] for name, values in extra.items()})
+    sc = c.scales
+    if sc is not None:
+        table.update({
+            "t (s)": table["tau (rad)"] / sc.inputs.omega,
+            "T (N)": table["T/T0"] * sc.T0, "mu P (N)": table["mu P/T0"] * sc.T0,
+            "alpha (m)": table["alpha/(H-h)"] * sc.alpha_star,
+            "a (m)": table["a/a*"] * sc.a_star, "b (m)": table["b/a*"] * sc.a_star,
+            "v2 (m/s)": table["v2/(omega u0)"] * sc.v_star,
+            "u2 (m)": table["u2/u0"] * sc.u0})
     return table
 
 
-def csv_text(table: dict[str, np.ndarray]) -> str:
-    """The table as CSV: a header of column names, 10 significant digits (a negative
-    zero is written 0)."""
+def traction_table(traction: TractionScene, c: Contact, tau: float) -> dict[str, np.ndarray]:
+    """The traction profile of `c` at time tau (rad): r/a*, tau_u/(mu p*), p/p*, stick, plus
+    r (m), tau_u (Pa) and p (Pa) when `c` has SI scales."""
+    table = traction.table(c, tau)
+    sc = c.scales
+    if sc is not None:
+        table.update({"r (m)": table["r/a*"] * sc.a_star,
+                      "tau_u (Pa)": table["tau_u/(mu p*)"] * sc.traction_star,
+                      "p (Pa)": table["p/p*"] * sc.p_star})
+    return table
+
+
+def header(key: str, c: Contact, tau: float | None = None) -> list[str]:
+    """The comment lines of file `key` ('curves', 'traction', 'impulse') for contact `c`
+    and, for a traction profile, its time tau (rad); without the leading '# '."""
+    lines = [f"Zharii 1996 explorer: {TITLES[key]}",
+             f"source: {SOURCE}",
+             f"app: zharii-contact {app_version()}"]
+    for name, unit in PARAMETERS:
+        lines.append(_parameter(name, unit, getattr(c, name)))
+    if c.scales is not None:
+        lines.append("defined by SI inputs (psi from u0/H, eq 23; tau0 from h/H, eq 4):")
+        inputs = c.scales.inputs
+        lines += [_parameter(name, unit, getattr(inputs, name)) for name, unit in SI_INPUTS]
+    if tau is not None:
+        lines.append(_parameter("tau", "rad", tau))
+    return lines
+
+
+def _parameter(name: str, unit: str, value: float) -> str:
+    """'name (unit) = value' with the shortest text that reads back as the same float."""
+    return f"{name}{f' ({unit})' if unit else ''} = {float(value) + 0.0!r}"
+
+
+def csv_text(table: dict[str, np.ndarray], comments: Sequence[str] = ()) -> str:
+    """The table as CSV: the `comments` and a description of each column (`COLUMNS`) as
+    lines starting '# ', a line of column names, then the rows with 10 significant digits
+    (a negative zero is written 0)."""
     names = list(table)
+    lines = [*comments, "columns:", *(f"  {n}: {COLUMNS[n]}" for n in names)]
     body = np.column_stack([np.asarray(table[n], float) for n in names]) + 0.0
     out = io.StringIO()
+    out.writelines(f"# {line}\n" for line in lines)
     np.savetxt(out, body, delimiter=",", header=",".join(names), comments="", fmt="%.10g")
     return out.getvalue()
 
 
-def file_name(key: str, c: Contact) -> str:
-    """The CSV file's name, after the parameters it holds."""
-    return f"zharii_{key}_psi{c.psi:.4g}_tau0_{c.tau0:.4g}_mu{c.mu:g}_nu{c.nu:g}.csv"
+def file_name(key: str, c: Contact, tau: float | None = None) -> str:
+    """The CSV file's name, after the parameters it holds (psi, tau0 and tau to 4
+    significant digits, mu and nu to 6; the file's comment lines have them in full) and,
+    for a traction profile, its time tau (rad)."""
+    name = (f"zharii_{key}_psi{_short(c.psi, '.4g')}_tau0_{_short(c.tau0, '.4g')}"
+            f"_mu{_short(c.mu, 'g')}_nu{_short(c.nu, 'g')}")
+    return f"{name}_tau{_short(tau, '.4g')}.csv" if tau is not None else f"{name}.csv"
+
+
+def _short(x: float, spec: str) -> str:
+    """x formatted with `spec`; a negative zero written 0."""
+    return format(float(x) + 0.0, spec)
