@@ -1,9 +1,11 @@
 """The explorer's state: the parameters a user controls, and nothing of the view.
 
 `ExplorerState` holds the four dimensionless numbers of the problem (psi, tau0, mu,
-nu), the current time tau, the animation settings and the optional physical inputs.
-It turns them into a `core.Contact` (the only place the app builds one) and knows how
-to read and write them as a URL query string.  All physics lives in `core`.
+nu), the current time tau, the animation settings and the optional physical inputs (SI
+units: R, H, u0, h in m, G in Pa, omega in rad/s; `app.physical_inputs` shows them in
+mm, GPa, µm and kHz).  It turns them into a `core.Contact` (the only place the app
+builds one) and knows how to read and write them as a URL query string.  All physics
+lives in `core`.
 """
 
 from __future__ import annotations
@@ -57,8 +59,24 @@ def parse_tau(raw: str, c: Contact) -> float:
     return tau
 
 
-#: Query parameters written to / read from the URL, in this order.
-QUERY_KEYS = ("psi", "tau0", "mu", "nu", "tau", "log_psi", "preset")
+#: The physical inputs, in SI units: R, H, u0, h (m), G (Pa), omega (rad/s).
+SI_KEYS = ("R", "G", "H", "u0", "h", "omega")
+
+#: Query parameters written to / read from the URL, in this order.  With physical = 1
+#: the URL holds the physical inputs (SI units), and psi and tau0 follow from them.
+QUERY_KEYS = ("psi", "tau0", "mu", "nu", "tau", "log_psi", "preset", "physical",
+              "material", *SI_KEYS)
+
+
+def parse_flag(name: str, raw: str) -> bool:
+    """The boolean a URL text `raw` gives flag `name` (1/0, true/false, yes/no, on/off,
+    '' for false); ValueError with the message to show otherwise."""
+    text = raw.lower()
+    if text in ("1", "true", "yes", "on"):
+        return True
+    if text in ("0", "false", "no", "off", ""):
+        return False
+    raise ValueError(f"{name} = {raw!r} must be 0 or 1")
 
 
 @dataclass(frozen=True)
@@ -111,7 +129,9 @@ class ExplorerState(param.Parameterized):
                           doc="name of the last preset loaded, '' once edited")
 
     physical = param.Boolean(default=False, doc="define the contact by SI inputs")
-    material = param.Selector(default="custom", objects=["custom", *MATERIALS])
+    material = param.Selector(default="custom", objects=["custom", *MATERIALS],
+                              doc="the core.MATERIALS entry G, nu and mu are those of, "
+                                  "'custom' once one of them differs")
     R = param.Number(default=0.01, **bounds("R"), doc="sphere radius (m)")
     G = param.Number(default=79e9, **bounds("G"), doc="shear modulus (Pa)")
     H = param.Number(default=2e-6, **bounds("H"), doc="normal amplitude (m)")
@@ -152,19 +172,36 @@ class ExplorerState(param.Parameterized):
         self.apply_preset(DEFAULT_PRESET)
 
     def apply_material(self, name: str) -> None:
-        """Copy G, nu and mu of `core.MATERIALS[name]` into the state."""
+        """Copy G (Pa), nu and mu of `core.MATERIALS[name]` into the state and switch the
+        physical inputs on (a material is a physical contact's; it never changes mu and
+        nu of a dimensionless one unseen); KeyError if unknown."""
         m = MATERIALS[name]
-        self.param.update(material=name, G=m["G"], nu=m["nu"], mu=m["mu"])
+        self.param.update(material=name, G=m["G"], nu=m["nu"], mu=m["mu"], physical=True)
+
+    @param.depends("G", "nu", "mu", watch=True)
+    def _leave_material(self) -> None:
+        """`material` names the material whose G, nu and mu are the state's: another
+        value of one of them (a slider, a typed value, a preset) leaves it."""
+        m = MATERIALS.get(self.material)
+        if m is not None and (self.G, self.nu, self.mu) != (m["G"], m["nu"], m["mu"]):
+            self.material = "custom"
 
     def query(self) -> dict[str, str]:
-        """The shareable part of the state as URL query values."""
+        """The shareable part of the state as URL query values (SI units for the
+        physical inputs; with them on, psi and tau0 follow from them and are left out)."""
         # repr: the shortest text that reads back as the same float (a link restores the
         # very state, the preset included)
-        q = {k: repr(float(getattr(self, k))) for k in ("psi", "tau0", "mu", "nu", "tau")}
+        keys = ("mu", "nu", "tau") if self.physical else ("psi", "tau0", "mu", "nu", "tau")
+        q = {k: repr(float(getattr(self, k))) for k in keys}
         if self.log_psi:
             q["log_psi"] = "1"
         if self.preset:
             q["preset"] = self.preset
+        if self.physical:
+            q["physical"] = "1"
+            if self.material != "custom":
+                q["material"] = self.material
+            q.update({k: repr(float(getattr(self, k))) for k in SI_KEYS})
         return q
 
 
@@ -175,8 +212,11 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
     `pn.state.session_args`).  Returns `(values, messages)`: the accepted values as
     parameter updates for `ExplorerState`, and one human-readable message per
     rejected value (whose default is then kept).  Unknown names are reported too.
-    A `preset` is applied first; explicit values then override it (and the state leaves
-    the preset if they differ from its values: `ExplorerState.matches`).
+    A `preset` is applied first, then a `material` (G, nu, mu, physical = 1); explicit
+    values then override them (and the state leaves the preset or the material if they
+    differ from its values).  With physical = 1, R, G, H, u0, h (m, Pa) and omega
+    (rad/s) define the contact and psi and tau0 follow from them; physical inputs that
+    core refuses together (e.g. |h| >= H) are reported and physical is left off.
     """
     values: dict = {}
     messages: list[str] = []
@@ -202,21 +242,47 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
         else:
             messages.append(f"preset = {name!r} is unknown (known: {', '.join(PRESETS)})")
 
-    for key in ("psi", "tau0", "mu", "nu"):
+    if "material" in flat:
+        name = flat["material"]
+        if name in MATERIALS:
+            m = MATERIALS[name]
+            values.update(material=name, G=m["G"], nu=m["nu"], mu=m["mu"], physical=True)
+        elif name == "custom":
+            values["material"] = name
+        else:
+            messages.append(f"material = {name!r} is unknown "
+                            f"(known: {', '.join(MATERIALS)}, custom)")
+
+    explicit = set()
+    for key in ("psi", "tau0", "mu", "nu", *SI_KEYS):
         if key in flat:
             try:
                 values[key] = parse_value(key, flat[key])
+                explicit.add(key)
             except ValueError as err:
                 messages.append(str(err))
 
-    if "log_psi" in flat:
-        raw = flat["log_psi"].lower()
-        if raw in ("1", "true", "yes", "on"):
-            values["log_psi"] = True
-        elif raw in ("0", "false", "no", "off", ""):
-            values["log_psi"] = False
+    for key in ("log_psi", "physical"):
+        if key in flat:
+            try:
+                values[key] = parse_flag(key, flat[key])
+            except ValueError as err:
+                messages.append(str(err))
+
+    if values.get("physical"):
+        inputs = {k: values.get(k, ExplorerState.param[k].default)
+                  for k in (*SI_KEYS, "mu", "nu")}
+        try:
+            c = Contact.from_physical(**inputs)
+        except ValueError as err:
+            messages.append(f"the physical inputs are not applied: {err}")
+            values["physical"] = False
         else:
-            messages.append(f"log_psi = {flat['log_psi']!r} must be 0 or 1")
+            for key in ("psi", "tau0"):
+                if key in explicit:
+                    messages.append(f"{key} = {flat[key]!r} ignored: with physical = 1 it "
+                                    f"follows from {', '.join(SI_KEYS)}, mu and nu")
+            values.update(psi=c.psi, tau0=c.tau0)
 
     if "tau" in flat:
         tau0 = values.get("tau0", ExplorerState.param.tau0.default)

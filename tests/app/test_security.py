@@ -32,6 +32,14 @@ PAYLOADS = {
     "tau": "<iframe id=xss-tau src=javascript:alert('tau')></iframe>",
     "log_psi": "<details id=xss-log open ontoggle=alert('log')>",
     "preset": "[click](javascript:alert('preset')) <a id=xss-preset href=x>a</a>",
+    "physical": "<img src=x id=xss-physical onerror=alert('physical')>",
+    "material": "<script id=xss-material>alert('material')</script>",
+    "R": "<b id=xss-R>R</b>",
+    "G": "<svg id=xss-G onload=alert('G')>",
+    "H": "<img src=x id=xss-H onerror=alert('H')>",
+    "u0": "<i id=xss-u0>u0</i>",
+    "h": "<u id=xss-h>h</u>",
+    "omega": "<s id=xss-omega>omega</s>",
     "<img src=x id=xss-key onerror=alert('key')>": "1",
 }
 
