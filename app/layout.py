@@ -1,10 +1,14 @@
 """The page: the explorer's controls in the sidebar, its scenes in cards in the main area.
 
-Sizes and type are for a projector (17 px base); on a phone the cards stack.
+Sizes and type are for a projector (17 px base, never below 16 px); on a phone the cards
+stack.  Every control shows a ring when the keyboard is on it, and the sidebar's
+"Keyboard" card lists the keys the page answers to.
 """
 
 from __future__ import annotations
 
+import html
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import panel as pn
@@ -21,15 +25,39 @@ DISC_KEY = " ".join(
     for p, name in ((Phase.FULL_STICK, "stick"), (Phase.SLIP, "slip"),
                     (Phase.COUNTER_SLIP, "counter-slip")))
 
+#: The note under the preset selector: what to notice in the figure on screen.
+NOTE_STYLE = {"background": "#eef5fb", "color": "#1b3a57", "border-left": "4px solid #0072B2",
+              "padding": "0.4em 0.8em", "font-size": "1rem"}
+
 #: The warning box above the plots (rejected URL values).
 MESSAGE_STYLE = {"background": "#fff3cd", "color": "#664d03", "border": "1px solid #ffe69c",
                  "border-radius": "6px", "padding": "0.6em 1em"}
 
-#: Large type for a projector; a little smaller on a phone.
-CSS = """
-:root { --bokeh-font-size: 17px; }
-html { font-size: 17px; }
-@media (max-width: 700px) { :root { --bokeh-font-size: 15px; } html { font-size: 15px; } }
+#: Colour of the ring around the control the keyboard is on (6.3:1 on white).
+FOCUS_COLOR = "#1A5FB4"
+
+#: The page's CSS, in the page and in every Panel component's shadow root
+#: (`pn.config.raw_css`):
+#:
+#: * large type for a projector, 16 px on a phone (the least for a control's text);
+#:   text boxes and menus take it too (a browser gives them 13.3 px of their own);
+#: * a 3 px ring, 2 px outside the control the keyboard is on (`:focus-visible`), clear
+#:   of a check box's label;
+#: * Bokeh's button colours darkened for white text at 4.5:1 at least (WCAG AA):
+#:   Play's green (success) 5.5:1, Pause's orange (warning) 5.3:1.
+CSS = f"""
+:root {{ --bokeh-font-size: 17px; }}
+html {{ font-size: 17px; }}
+@media (max-width: 700px) {{ :root {{ --bokeh-font-size: 16px; }} html {{ font-size: 16px; }} }}
+input, select, textarea {{ font-size: inherit; }}
+:host :focus-visible {{ outline: 3px solid {FOCUS_COLOR}; outline-offset: 2px; }}
+input[type="checkbox"] + * {{ margin-left: 0.5em; }}
+:host {{
+  --success: #00785A; --success-border: #00664D; --success-hover: #006A4F;
+  --success-hover-border: #005A43; --success-active: #005C44; --success-active-border: #004D39;
+  --warning: #A85400; --warning-border: #8F4700; --warning-hover: #944A00;
+  --warning-hover-border: #7F4000; --warning-active: #7F4000; --warning-active-border: #6B3600;
+}}
 """
 
 
@@ -42,9 +70,84 @@ def card(*objs, title: str, flex: str = "1 1 520px") -> pn.Card:
 #: The page's title (browser tab and header).
 TITLE = "Zharii (1996): two elastic spheres in intermittent frictional contact"
 
-#: The header bar.
+#: The header bar (the page's one <h1>).
 HEADER_STYLE = {"background": "#0072B2", "color": "white", "padding": "0.4em 1em",
                 "font-size": "1.3em", "font-weight": "bold"}
+#: The <h1> in the header bar, in the bar's type.
+HEADING_CSS = "h1 { font-size: inherit; font-weight: inherit; margin: 0; }"
+#: The sidebar's headings (<h2>, the level below the page's title) at the size of an <h3>.
+SUBHEADING_CSS = "h2 { font-size: 1.17em; }"
+
+
+@dataclass(frozen=True)
+class Keys:
+    """A line of the keyboard card: `keys` (DOM key names, as `KeyboardEvent.key` or
+    Playwright spell them) pressed on a `target` do `action`; `opposite`: the keys do
+    opposite things ('a / b', the action says both), else they are alternatives
+    ('a or b')."""
+
+    target: str
+    keys: tuple[str, ...]
+    action: str
+    opposite: bool = False
+
+
+#: The keys the page answers to (BokehJS's sliders are noUiSlider's, whose keys these
+#: are; text boxes, menus, check boxes and buttons are the browser's own).  The curve
+#: tabs are not listed: BokehJS's tabs answer to the mouse only.
+KEYS = (
+    Keys("Anywhere", ("Tab", "Shift+Tab"), "next / previous control", opposite=True),
+    Keys("Slider", ("ArrowLeft", "ArrowRight"), "one step down / up", opposite=True),
+    Keys("Slider", ("ArrowDown", "ArrowUp"), "one step down / up", opposite=True),
+    Keys("Slider", ("PageDown", "PageUp"), "five steps down / up", opposite=True),
+    Keys("Slider", ("Home", "End"), "to the start / end of its range", opposite=True),
+    Keys("Number box", ("Enter",), "apply the typed number"),
+    Keys("Button", ("Space", "Enter"), "press it"),
+    Keys("Check box", ("Space",), "tick or untick it"),
+    Keys("Menu", ("ArrowDown", "ArrowUp"), "next / previous choice", opposite=True),
+    Keys("Card title", ("Enter", "Space"), "open or close the card"),
+)
+
+#: How the keyboard card shows a key.
+KEY_NAMES = {"ArrowLeft": "←", "ArrowRight": "→", "ArrowDown": "↓", "ArrowUp": "↑",
+             "PageDown": "Page Down", "PageUp": "Page Up", "Shift+Tab": "Shift + Tab"}
+
+#: The keyboard card's look: a group per target, keys drawn as keycaps.
+KEYS_CSS = """
+table { border-collapse: collapse; width: 100%; }
+caption { text-align: left; padding-bottom: 0.3em; }
+th, td { text-align: left; vertical-align: top; padding: 0.15em 0.3em; }
+tbody th[scope="rowgroup"] { padding-top: 0.5em; border-bottom: 1px solid #dddddd; }
+tbody th[scope="row"] { font-weight: normal; white-space: nowrap; }
+kbd { font: inherit; border: 1px solid #adb5bd; border-radius: 3px; padding: 0 0.25em;
+      background: #f8f9fa; }
+"""
+
+
+def keys_html(keys: tuple[Keys, ...] = KEYS) -> str:
+    """The keyboard card's table: a group of rows per target, the keys as <kbd>."""
+    groups: dict[str, list[Keys]] = {}
+    for k in keys:
+        groups.setdefault(k.target, []).append(k)
+    body = []
+    for target, rows in groups.items():
+        lines = [f'<tr><th scope="rowgroup" colspan="2">{html.escape(target)}</th></tr>']
+        for k in rows:
+            names = (f"<kbd>{html.escape(KEY_NAMES.get(n, n))}</kbd>" for n in k.keys)
+            joined = (" / " if k.opposite else " or ").join(names)
+            lines.append(f'<tr><th scope="row">{joined}</th>'
+                         f"<td>{html.escape(k.action)}</td></tr>")
+        body.append(f"<tbody>{''.join(lines)}</tbody>")
+    return ("<table><caption>Keys of this page, on the control the keyboard is on "
+            f"(the one with a ring)</caption>{''.join(body)}</table>")
+
+
+def keyboard_card() -> pn.Card:
+    """The sidebar's collapsed card listing the keys (`KEYS`)."""
+    return pn.Card(pn.pane.HTML(keys_html(), stylesheets=[KEYS_CSS], disable_math=True,
+                                sizing_mode="stretch_width"),
+                   title="Keyboard", collapsed=True, sizing_mode="stretch_width")
+
 
 #: <meta> tags of the page (Bokeh's page template reads them from the document).
 META = {"viewport": "width=device-width, initial-scale=1",
@@ -58,15 +161,17 @@ def page(ex: Explorer) -> pn.Column:
     per page load); on a narrow screen the sidebar stacks above the scenes."""
     sidebar = [
         ex.preset_select,
+        ex.note,
         pn.Row(ex.reset_button, ex.downloads["curves"]),
         ex.psi_slider, ex.tau0_slider, ex.mu_slider, ex.nu_slider,
-        pn.pane.Markdown("### Time"),
+        pn.pane.Markdown("## Time", stylesheets=[SUBHEADING_CSS]),
         ex.tau_slider,
         pn.Row(ex.play_button, ex.step_button),
         ex.speed_slider,
         ex.log_box,
         ex.physical_card,
         pn.Row(ex.downloads["traction"], ex.downloads["impulse"]),
+        keyboard_card(),
     ]
     main = [
         ex.message,
@@ -78,17 +183,18 @@ def page(ex: Explorer) -> pn.Column:
             card(pn.pane.Bokeh(ex.disc.figure), pn.pane.HTML(DISC_KEY),
                  title="Contact disc", flex="0 0 380px"),
             card(ex.formulas, title="Formulas of the current phase", flex="2 1 480px"),
-            card(pn.pane.Bokeh(ex.readout.figure, sizing_mode="stretch_width"),
-                 title="Derived quantities", flex="1 1 380px"),
+            card(ex.readout, title="Derived quantities", flex="1 1 380px"),
             card(ex.tabs, title="Curves over the contact", flex="1 1 100%"),
             sizing_mode="stretch_width", align_content="flex-start"),
+        ex.fig6_card,
         ex.methods.view(),
         ex.motor_card,
     ]
     if CSS not in pn.config.raw_css:  # once per process
         pn.config.raw_css.append(CSS)
     return pn.Column(
-        pn.pane.HTML(TITLE, styles=HEADER_STYLE, sizing_mode="stretch_width", margin=0),
+        pn.pane.HTML(f"<h1>{html.escape(TITLE)}</h1>", styles=HEADER_STYLE,
+                     stylesheets=[HEADING_CSS], sizing_mode="stretch_width", margin=0),
         pn.FlexBox(
             pn.Column(*sidebar, styles={"flex": "0 1 370px", "min-width": "0"}),
             pn.Column(*main, styles={"flex": "1 1 600px", "min-width": "0"}),

@@ -29,6 +29,7 @@ from bokeh.palettes import Viridis256
 from panel.io import hold
 
 from app.scenes import CURVE_POINTS, TOOLS, _figure, _style, fit_range
+from app.widgets import LabelledCheckbox
 from core import Contact
 
 try:
@@ -113,7 +114,7 @@ class MethodsScene:
         self.choice = pn.widgets.MultiChoice(
             label="Methods", options=list(self.methods),
             value=[m for m in DEFAULT_METHODS if m in self.methods], sizing_mode="stretch_width")
-        self.live = pn.widgets.Checkbox(label="Recompute live on every change", value=False)
+        self.live = LabelledCheckbox(label="Recompute live on every change", value=False)
         self.run_button = pn.widgets.Button(label="Run methods", color="primary", width=140)
         self.progress = pn.indicators.Progress(active=False, visible=False, width=200)
         self.status = pn.pane.Markdown("", sizing_mode="stretch_width")

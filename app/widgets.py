@@ -8,6 +8,8 @@ again; a good value outside the slider's range widens the range to show it.
 
 Built from Panel's public widgets only, kept in step on the server: the slider's moves
 write the box, the box's entries write the slider, both through `value`.
+
+`LabelledCheckbox` is a check box whose label names it for a screen reader.
 """
 
 from __future__ import annotations
@@ -118,3 +120,50 @@ class ExactSlider(pn.viewable.Viewer):
     @param.depends("disabled", watch=True)
     def _show_disabled(self) -> None:
         self._slider.disabled = self._entry.disabled = self.disabled
+
+
+class LabelledCheckbox(pn.viewable.Viewer):
+    """A check box named by its label; `value` is True when it is ticked.
+
+    Panel's `Checkbox` is BokehJS's, which puts its label in a <div> beside the box: a
+    screen reader meets a check box without a name.  This one is BokehJS's one-option
+    `CheckboxGroup`, whose box sits inside its <label>.
+    """
+
+    value = param.Boolean(default=False)
+    disabled = param.Boolean(default=False)
+
+    def __init__(self, *, label: str, value: bool = False, **params) -> None:
+        super().__init__(value=value)
+        self.label = label
+        self._group = pn.widgets.CheckBoxGroup(options=[label], value=self._ticks(value),
+                                               **params)
+        self._group.param.watch(self._on_group, "value")
+
+    @classmethod
+    def from_param(cls, parameter: param.Parameter, *, label: str,
+                   **params) -> LabelledCheckbox:
+        """A check box kept equal to the boolean `parameter` of a Parameterized instance
+        (e.g. `state.param.log_psi`), whichever of the two changes."""
+        owner, name = parameter.owner, parameter.name
+        box = cls(label=label, value=getattr(owner, name), **params)
+        box.param.watch(lambda e: setattr(owner, name, e.new), "value")
+        owner.param.watch(lambda e: setattr(box, "value", e.new), name)
+        return box
+
+    def __panel__(self) -> pn.widgets.CheckBoxGroup:
+        return self._group
+
+    def _ticks(self, value: bool) -> list[str]:
+        return [self.label] if value else []
+
+    def _on_group(self, event: param.parameterized.Event) -> None:
+        self.value = self.label in event.new
+
+    @param.depends("value", watch=True)
+    def _show_value(self) -> None:
+        self._group.value = self._ticks(self.value)  # (Panel sends only what changed)
+
+    @param.depends("disabled", watch=True)
+    def _show_disabled(self) -> None:
+        self._group.disabled = self.disabled
