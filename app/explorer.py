@@ -24,26 +24,29 @@ import numpy as np
 import panel as pn
 from panel.io import hold
 
-from app import export, layout
+from app import export, layout, presentation
 from app.formulas import formulas
 from app.methods import MethodsScene
 from app.motor import FIELDS as MOTOR_FIELDS
 from app.motor import PREFIX as MOTOR_PREFIX
 from app.motor import MotorScene
+from app.multiples import SmallMultiples
+from app.notes import NOTES
+from app.physical_inputs import PhysicalInputs
 from app.player import Player, frame_index, frame_taus
+from app.readout import Readout
 from app.scenes import (
     DiscScene,
     ForceScene,
     ImpulseScene,
     MotionScene,
     RadiiScene,
-    ReadoutScene,
     Scene,
     TractionScene,
 )
 from app.spheres import SpheresScene
 from app.state import PRESETS, ExplorerState, parse_query, parse_tau, parse_value
-from app.widgets import ExactSlider
+from app.widgets import ExactSlider, LabelledCheckbox
 from core import Contact
 
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
@@ -59,13 +62,19 @@ class Explorer:
                  query: dict | None = None) -> None:
         self.state = state or ExplorerState()
         self.messages: list[str] = []
-        query = query or {}
+        query = dict(query or {})
+        view = query_value(query.pop("view", ""))
         #: the Motor scene's part of the URL (applied when the scene is built)
         self._motor_query = {k: v for k, v in query.items() if k.startswith(MOTOR_PREFIX)}
         if query:
             values, self.messages = parse_query(
                 {k: v for k, v in query.items() if k not in self._motor_query})
             self._apply_query(values)
+        #: the page shown: '' (everything) or 'present' (one screen, `app.presentation`)
+        self.view_name = view if view == presentation.VIEW else ""
+        if view not in ("", presentation.VIEW):
+            self.messages.append(f"view = {view!r} is unknown (known: {presentation.VIEW});"
+                                 " the full page is shown")
         self.contact: Contact = self.state.contact()
         self._syncing = False
         self._shown_phase = -1
@@ -81,7 +90,7 @@ class Explorer:
         self.spheres = SpheresScene()
         self.scenes: list[Scene] = [self.spheres, self.traction, self.disc, self.force,
                                     self.impulse, self.radii, self.motion]
-        self.readout = ReadoutScene()
+        self.readout = Readout()
         self.methods = MethodsScene()
         self.motor: MotorScene | None = None  # built when its card is first opened
         self.player = Player(self.traction, self.disc, [self.force, self.radii, self.motion],
@@ -112,11 +121,15 @@ class Explorer:
         self._show_figure(0)
         self._stale: set[Scene] = set()
         self.tabs.param.watch(self._on_tab, ["active"])
-        self.follow_motor = pn.widgets.Checkbox(
+        self.follow_motor = LabelledCheckbox(
             label="The plots above show the contact at the rotor's x₀", value=True)
         self.motor_card = pn.Card(title="Motor: the rod, its thrust and speed (Fig. 1)",
                                   collapsed=True, sizing_mode="stretch_width", margin=6)
         self.motor_card.param.watch(self._on_motor_card, "collapsed")
+        self.fig6_card = pn.Card(title="Fig. 6 in full: the six traction profiles "
+                                 "(ψ = 2.414, τ₀ = π/6)", collapsed=True,
+                                 sizing_mode="stretch_width", margin=6)
+        self.fig6_card.param.watch(self._on_fig6_card, "collapsed")
         self.refresh()
         if self._motor_query:  # a link to the motor opens it
             self.motor_card.collapsed = False
@@ -219,6 +232,12 @@ class Explorer:
         if messages:  # the link's refused motor values (after following, which clears)
             self.show_messages([*self.messages, *messages])
 
+    def _on_fig6_card(self, event) -> None:
+        """Build the six Fig. 6 plots when their card is first opened."""
+        if not event.new and not self.fig6_card.objects:
+            self.fig6_card.objects = [pn.pane.Bokeh(SmallMultiples().figure,
+                                                    sizing_mode="stretch_width")]
+
     def _follow_motor(self, contact: tuple[float, float] | None) -> None:
         """The scenes above show the rotor's contact (psi, tau0 at x0; its mu, nu)."""
         if contact is None or not self.follow_motor.value:
@@ -228,11 +247,18 @@ class Explorer:
         self.state.param.update(physical=False, psi=psi, tau0=tau0, mu=m.mu, nu=m.nu)
 
     def _on_preset(self, event) -> None:
-        """The selector and the T(tau) family follow the state's preset ('' once left)."""
+        """The selector, its note and the T(tau) family follow the state's preset ('' once
+        left)."""
         self.preset_select.value = event.new
+        self._show_note()
         with hold():
             self._show_family()
         self._write_url()
+
+    def _show_note(self) -> None:
+        """What to notice in the preset on screen (hidden once it is left)."""
+        note = NOTES.get(self.state.preset, "")
+        self.note.param.update(object=html.escape(note), visible=bool(note))
 
     def _show_family(self) -> None:
         """Overlay the T(tau) curves of the preset's psi family (Fig. 7), or none."""
@@ -391,28 +417,23 @@ class Explorer:
         self.step_button.on_click(lambda _: self.step())
         self.speed_slider = pn.widgets.FloatSlider.from_param(
             s.param.speed, label="Speed", start=0.1, end=5.0, step=0.1)
-        self.log_box = pn.widgets.Checkbox.from_param(s.param.log_psi,
-                                                      label="log ψ axis (to 10⁶)")
+        self.log_box = LabelledCheckbox.from_param(s.param.log_psi,
+                                                   label="log ψ axis (to 10⁶)")
         options = {"(custom)": "", **{p.label: k for k, p in PRESETS.items()}}
         self.preset_select = pn.widgets.Select(label="Preset: the paper's figures",
                                                options=options, value=s.preset)
         self.preset_select.param.watch(self._on_preset_select, "value")
+        self.note = pn.pane.HTML("", sizing_mode="stretch_width", styles=layout.NOTE_STYLE)
+        self._show_note()
         self.reset_button = pn.widgets.Button(label="Reset", width=100)
         self.reset_button.on_click(lambda _: s.reset())
 
-        self.physical_box = pn.widgets.Checkbox.from_param(
-            s.param.physical, label="Use physical inputs (SI units)")
-        self.material_select = pn.widgets.Select(label="Material", options=list(
-            s.param.material.objects), value=s.material)
-        self.material_select.param.watch(self._on_material, "value")
-        si = [pn.widgets.FloatInput.from_param(s.param[k], label=label, format="0.000e+0")
-              for k, label in (("R", "R radius (m)"), ("G", "G shear modulus (Pa)"),
-                               ("H", "H normal amplitude (m)"), ("u0", "u₀ tangential "
-                               "amplitude (m)"), ("h", "h gap (m), < H"),
-                               ("omega", "ω (rad/s)"))]
-        self.physical_card = pn.Card(self.physical_box, self.material_select, *si,
-                                     title="Physical inputs", collapsed=True,
-                                     sizing_mode="stretch_width")
+        self.physical_inputs = PhysicalInputs(s)  # R in mm, G in GPa, ... (its module)
+        self.physical_box = self.physical_inputs.physical_box
+        self.material_select = self.physical_inputs.material_select
+        self.physical_card = self.physical_inputs.card
+        # a link with physical inputs: psi and tau0 follow from them (as in `_on_params`)
+        self.psi_slider.disabled = self.tau0_slider.disabled = s.physical
 
         self.message = pn.pane.HTML("", visible=False, sizing_mode="stretch_width",
                                     name="query_message", styles=layout.MESSAGE_STYLE)
@@ -435,10 +456,6 @@ class Explorer:
     def _on_preset_select(self, event) -> None:
         if event.new and event.new != self.state.preset:
             self.state.apply_preset(event.new)
-
-    def _on_material(self, event) -> None:
-        if event.new != "custom":
-            self.state.apply_material(event.new)
 
     def show_messages(self, messages: list[str]) -> None:
         """Show warnings (e.g. rejected URL values) above the plots; [] hides them.
@@ -494,33 +511,40 @@ class Explorer:
 
     # ---------------------------------------------------------------- outputs
 
-    def csv_text(self, key: str) -> str:
-        """CSV of the data shown: 'curves' (T, radii, motion on the tau grid),
-        'traction' (the profile at the current tau) or 'impulse' (the impulse curve)."""
+    def csv_text(self, key: str, tau: float | None = None) -> str:
+        """CSV of the data shown (`app.export`): 'curves' (T, radii, motion on the tau
+        grid), 'traction' (the profile at time tau, rad: by default the state's) or
+        'impulse' (the impulse curve), after comment lines naming the parameters."""
         self.catch_up(self.tabbed)  # a hidden tab's data too, as it is now
+        c = self.contact
+        tau = self.state.tau if tau is None else tau
         if key == "curves":
-            table = export.curves_table(self.force, self.radii, self.motion,
-                                        self.contact.scales)
+            table = export.curves_table(self.force, self.radii, self.motion, c)
         elif key == "traction":
-            table = self.traction.table()
+            table = export.traction_table(self.traction, c, tau)
         elif key == "impulse":
             table = self.impulse.table()
         else:
             raise KeyError(key)
-        return export.csv_text(table)
+        return export.csv_text(table, export.header(key, c, tau if key == "traction" else None))
 
-    def csv_filename(self, key: str) -> str:
-        """The CSV file's name, after the parameters it holds."""
-        return export.file_name(key, self.contact)
+    def csv_filename(self, key: str, tau: float | None = None) -> str:
+        """The CSV file's name, after the parameters it holds and, for 'traction', the
+        time tau (rad; by default the state's)."""
+        tau = self.state.tau if tau is None else tau
+        return export.file_name(key, self.contact, tau if key == "traction" else None)
 
     def csv_file(self, key: str) -> io.StringIO:
         """The CSV as a file object, for `pn.widgets.FileDownload` (called on a click).
 
-        The download is named here, when it is made, not on every parameter change:
-        renaming the buttons' files would re-render them in the browser per slider move.
+        A traction profile is taken at the tau shown: while playing, the browser's frame
+        (`clock_tau`), named in the file and its name alike.  The download is named here,
+        when it is made, not on every parameter change: renaming the buttons' files
+        would re-render them in the browser per slider move.
         """
-        self.downloads[key].filename = self.csv_filename(key)
-        return io.StringIO(self.csv_text(key))
+        tau = self.clock_tau() if self.state.playing else self.state.tau
+        self.downloads[key].filename = self.csv_filename(key, tau)
+        return io.StringIO(self.csv_text(key, tau))
 
     def _write_url(self) -> None:
         """Put the parameters in the page's URL, URL_DELAY_S after the last change.
@@ -553,10 +577,15 @@ class Explorer:
         query = self.state.query()
         if self.motor is not None:
             query.update(self.motor.query())
+        if self.view_name:
+            query["view"] = self.view_name
         loc.search = "?" + urlencode(query)
 
     def view(self) -> pn.Column:
-        """The page (`app.layout.page`)."""
+        """The page: `app.layout.page`, or the one-screen `app.presentation` view when
+        the explorer was opened with view=present."""
+        if self.view_name == presentation.VIEW:
+            return presentation.presentation(self)
         return layout.page(self)
 
     def servable(self) -> pn.Column:
@@ -573,6 +602,15 @@ class Explorer:
         self.methods.close()
         if self.motor is not None:
             self.motor.close()
+
+
+def query_value(raw: str | bytes | list) -> str:
+    """One URL query value as text (the last of repeated values, as the other keys)."""
+    if isinstance(raw, list):
+        raw = raw[-1] if raw else ""
+    if isinstance(raw, bytes):
+        raw = raw.decode("utf-8", "replace")
+    return str(raw).strip()
 
 
 def build_explorer(query: dict | None = None) -> Explorer:

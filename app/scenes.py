@@ -16,17 +16,23 @@ current-tau markers live in `<name>_marker`.
 from __future__ import annotations
 
 import math
+import re
+import unicodedata
 from functools import cached_property
 
 import numpy as np
+from bokeh.layouts import column
 from bokeh.models import (
+    CDSView,
     ColumnDataSource,
     CustomJS,
     GlyphRenderer,
+    IndexFilter,
     Label,
     Legend,
     LegendItem,
     Range1d,
+    SaveTool,
 )
 from bokeh.plotting import figure
 
@@ -35,6 +41,9 @@ from app.wire import inline
 from core import Contact, impulse_ratio
 
 TOOLS = "pan,wheel_zoom,box_zoom,reset,save"
+#: Greek letters of the plots' titles, spelled out in the PNG file names
+GREEK = str.maketrans({"α": "alpha", "μ": "mu", "ν": "nu", "τ": "tau", "ψ": "psi",
+                       "ω": "omega", "θ": "theta"})
 CURVE_POINTS = 400  # points per curve over the contact: finer than any screen needs
 PROFILE_POINTS = 151  # points across the contact diameter for the traction profile
 
@@ -122,7 +131,19 @@ def _figure(title: str, x_label: str, y_label: str, **kwargs):
     kwargs.setdefault("sizing_mode", "stretch_width")
     kwargs.setdefault("height", 340)
     kwargs.setdefault("min_width", 300)
-    return figure(title=title, x_axis_label=x_label, y_axis_label=y_label, **kwargs)
+    fig = figure(title=title, x_axis_label=x_label, y_axis_label=y_label, **kwargs)
+    for tool in fig.select(type=SaveTool):  # downloads the PNG without asking for a name
+        tool.filename = png_name(title)
+    return fig
+
+
+def png_name(title: str) -> str:
+    """The name (without .png) under which the save tool downloads the plot titled
+    `title`: 'zharii_' and the title's words in lower-case ASCII (Greek letters spelled
+    out, subscripts as digits).  Fixed per plot: a name following the parameters would
+    re-render the tool's button in the browser on every parameter change."""
+    text = unicodedata.normalize("NFKD", title.translate(GREEK)).lower()
+    return "_".join(["zharii", *re.findall(r"[a-z0-9]+", text)])
 
 
 class Scene:
@@ -207,6 +228,17 @@ class TractionScene(Scene):
         return {"r": r, "traction": c.traction(r, t), "upper": p, "lower": -p,
                 "stick_lo": np.where(stick, -p, 0.0), "stick_hi": np.where(stick, p, 0.0)}
 
+    def table(self, c: Contact, tau: float) -> dict[str, np.ndarray]:
+        """The profile of contact `c` at time tau (rad), on the points `update_tau` plots,
+        for the CSV download: r/a* (signed position along x through the centre), the
+        traction tau_u/(mu p*) (eqs 18, 24, 33, 36), the pressure p/p* (eq 6; also the
+        Coulomb bound mu p in units of mu p*) and stick (1 in the stick disc |r| <= b,
+        0 in slip and outside contact)."""
+        profile = {k: v[0] for k, v in self.profiles(c, np.array([tau])).items()}
+        r, b = profile["r"], float(c.stick_radius(tau))
+        return {"r/a*": r, "tau_u/(mu p*)": profile["traction"], "p/p*": profile["upper"],
+                "stick": ((np.abs(r) <= b) & (b > 0)).astype(float)}
+
     def update_tau(self, c: Contact, tau: float) -> None:
         self.source.data = inline({k: v[0] for k, v in self.profiles(c, np.array([tau])).items()})
         look = style(c.phase(tau))
@@ -260,69 +292,116 @@ class CurveScene(Scene):
     curves: tuple[tuple[str, str, str, str], ...] = ()
     title = ""
     y_label = ""
+    #: the plot's panels, one above the other on a shared time axis: (title, y label,
+    #: the columns drawn); empty: one panel of every curve
+    panels: tuple[tuple[str, str, tuple[str, ...]], ...] = ()
 
     def __init__(self) -> None:
         super().__init__({"tau": [], **{col: [] for col, *_ in self.curves}})
         self.marker = ColumnDataSource({"x": [], "y": [], "color": [], "lo": [], "hi": []},
                                        name=f"{self.name}_marker")
         #: the paper's landmarks on the time axis: tau0, pi/2, tau1 (psi > 1), pi - tau0
+        #: (one source per panel)
         self.landmarks = ColumnDataSource({"x": [], "label": [], "lo": [], "hi": []},
                                           name=f"{self.name}_landmarks")
+        self._landmarks = [self.landmarks] + [
+            ColumnDataSource({"x": [], "label": [], "lo": [], "hi": []},
+                             name=f"{self.name}_landmarks_{i}")
+            for i in range(1, len(self._panels()))]
+
+    def _panels(self) -> tuple[tuple[str, str, tuple[str, ...]], ...]:
+        return self.panels or ((self.title, self.y_label,
+                                tuple(col for col, *_ in self.curves)),)
 
     @cached_property
-    def figure(self):
-        """The plot, built on first use (a scene in a closed tab may never need it)."""
-        return self._make_figure()
+    def figures(self) -> list:
+        """The panels' plots, built on first use (a scene in a closed tab may never need
+        them)."""
+        return self._make_figures()
 
-    def _make_figure(self):
-        fig = _figure(self.title, "τ = ωt (rad)", self.y_label)
-        fig.segment(x0="x", y0="lo", x1="x", y1="hi", source=self.landmarks,
-                    line_color="#bbbbbb", line_width=1, line_dash="dashed")
-        fig.text("x", "hi", text="label", source=self.landmarks, text_align="center",
-                 text_baseline="top", text_font_size="12pt", text_color="#555555",
-                 y_offset=2)
-        lines = [fig.line("tau", col, source=self.source, color=color, line_width=3,
-                          line_dash=dash, level=FRAME_LEVEL, name=f"{self.name}_{col}")
-                 for col, _, color, dash in self.curves]
-        # the curves are drawn above the legend's level, so the legend goes beside them
-        add_legend(fig, [(label, [line]) for (_, label, *_), line
-                         in zip(self.curves, lines, strict=True)])
-        fig.scatter("x", "y", source=self.marker, size=13, color="color", line_color="black",
-                    level=FRAME_LEVEL)
-        # the cursor at the current tau is drawn from the marker's own source, so that a
-        # frame changes one data source per plot (moving a Span model costs the browser
-        # a full repaint of the plot)
-        fig.segment(x0="x", y0="lo", x1="x", y1="hi", source=self.marker, line_color="#666666",
-                    line_width=2, line_dash="dotted", level=FRAME_LEVEL)
-        _style(fig)
-        return fig
+    @property
+    def figure(self):
+        """What the page shows: the plot, or its panels in a column."""
+        figs = self.figures
+        return figs[0] if len(figs) == 1 else self._column
+
+    @cached_property
+    def _column(self):
+        return column(*self.figures, sizing_mode="stretch_width")
+
+    def _make_figures(self) -> list:
+        figs = []
+        rows = {col: i for i, (col, *_) in enumerate(self.curves)}
+        for k, ((title, y_label, cols), landmarks) in enumerate(
+                zip(self._panels(), self._landmarks, strict=True)):
+            extra = {"x_range": figs[0].x_range} if figs else {}
+            fig = _figure(title, "τ = ωt (rad)", y_label, **extra)
+            fig.segment(x0="x", y0="lo", x1="x", y1="hi", source=landmarks,
+                        line_color="#bbbbbb", line_width=1, line_dash="dashed")
+            fig.text("x", "hi", text="label", source=landmarks, text_align="center",
+                     text_baseline="top", text_font_size="12pt", text_color="#555555",
+                     y_offset=2)
+            drawn = [(c, lb, color, dash) for c, lb, color, dash in self.curves if c in cols]
+            lines = [fig.line("tau", col, source=self.source, color=color, line_width=3,
+                              line_dash=dash, level=FRAME_LEVEL, name=f"{self.name}_{col}")
+                     for col, _, color, dash in drawn]
+            # the curves are drawn above the legend's level, so the legend goes beside them
+            add_legend(fig, [(label, [line]) for (_, label, *_), line
+                             in zip(drawn, lines, strict=True)])
+            view = {} if len(self._panels()) == 1 else {"view": CDSView(
+                filter=IndexFilter([rows[col] for col in cols]))}
+            fig.scatter("x", "y", source=self.marker, size=13, color="color",
+                        line_color="black", level=FRAME_LEVEL, **view)
+            # the cursor at the current tau is drawn from the marker's own source, so that
+            # a frame changes one data source per plot (moving a Span model costs the
+            # browser a full repaint of the plot)
+            fig.segment(x0="x", y0="lo", x1="x", y1="hi", source=self.marker,
+                        line_color="#666666", line_width=2, line_dash="dotted",
+                        level=FRAME_LEVEL, **view)
+            _style(fig)
+            if k:
+                fig.title.text_font_size = "13pt"
+            figs.append(fig)
+        return figs
+
+    def _y_range(self, col: str) -> Range1d:
+        """The y range of the panel drawing column `col`."""
+        for (_, _, cols), fig in zip(self._panels(), self.figures, strict=True):
+            if col in cols:
+                return fig.y_range
+        raise KeyError(col)
+
+    def grid(self, c: Contact) -> np.ndarray:
+        """The times the curves are drawn at (rad)."""
+        return c.tau_grid(CURVE_POINTS)
 
     def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
         """Values of every curve at the times tau (an array)."""
         raise NotImplementedError
 
     def update_contact(self, c: Contact) -> None:
-        tau = c.tau_grid(CURVE_POINTS)
+        tau = self.grid(c)
         columns = self.columns(c, tau)
         self.source.data = inline({"tau": tau, **columns})
-        fit_range(self.figure.x_range, tau, pad=0.02)
-        fit_range(self.figure.y_range, *columns.values(), pad=0.03, snap=True)
+        fit_range(self.figures[0].x_range, tau, pad=0.02)
         marks = [(c.tau0, "τ₀"), (math.pi / 2, "π/2"), (c.tau1, "τ₁"), (c.tau_end, "π−τ₀")]
         marks = [(x, label) for x, label in marks if not math.isnan(x)]
-        y = self.figure.y_range
-        self.landmarks.data = {"x": [x for x, _ in marks], "label": [lb for _, lb in marks],
-                               "lo": [y.start] * len(marks), "hi": [y.end] * len(marks)}
+        for (_, _, cols), fig, landmarks in zip(self._panels(), self.figures,
+                                                self._landmarks, strict=True):
+            y = fig.y_range
+            fit_range(y, *(columns[col] for col in cols), pad=0.03, snap=True)
+            landmarks.data = {"x": [x for x, _ in marks], "label": [lb for _, lb in marks],
+                              "lo": [y.start] * len(marks), "hi": [y.end] * len(marks)}
 
     def update_tau(self, c: Contact, tau: float) -> None:
         values = self.columns(c, np.array([tau]))
-        n = len(self.curves)
-        y_range = self.figure.y_range
+        ranges = [self._y_range(col) for col, *_ in self.curves]
         self.marker.data = {
-            "x": [tau] * n,
+            "x": [tau] * len(self.curves),
             "y": [float(values[col][0]) for col, *_ in self.curves],
             "color": [color for _, _, color, _ in self.curves],
-            "lo": [y_range.start] * n,
-            "hi": [y_range.end] * n,
+            "lo": [y.start for y in ranges],
+            "hi": [y.end for y in ranges],
         }
 
 
@@ -344,16 +423,23 @@ class ForceScene(CurveScene):
                                        name="force_family")
         self._family: list[tuple] = []
 
-    def _make_figure(self):
-        fig = super()._make_figure()
-        fig.multi_line("xs", "ys", source=self.family, color="color", line_width=2,
-                       line_alpha=0.7, legend_field="label")
-        return fig
+    def _make_figures(self) -> list:
+        figs = super()._make_figures()
+        figs[0].multi_line("xs", "ys", source=self.family, color="color", line_width=2,
+                           line_alpha=0.7, legend_field="label")
+        return figs
 
     def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
         line = c.at(tau)
         n = line.normal_force  # P / P0 = mu P / T0
         return {"T": line.tangential_force, "muP": n, "neg_muP": -n}
+
+    def table(self) -> dict[str, np.ndarray]:
+        """The plotted curves for the CSV download: tau (rad), T/T0 (eqs 38, 39) and the
+        Coulomb bounds +-mu P/T0 = +-P/P0 (eq 9)."""
+        d = {k: np.asarray(v) for k, v in self.source.data.items()}
+        return {"tau (rad)": d["tau"], "T/T0": d["T"], "mu P/T0": d["muP"],
+                "-mu P/T0": d["neg_muP"]}
 
     def set_family(self, contacts: list[Contact]) -> None:
         """Overlay T / T0 of further contacts (the paper's Fig. 7 families).
@@ -384,13 +470,89 @@ class RadiiScene(CurveScene):
         ("b", "b / a*", "#009E73", "solid"),
     )
 
+    #: the times of the Fig. 6 profiles, marked a to f on the a(tau) curve (Fig. 4b)
+    FIG6_TAUS = (("a", math.pi / 4), ("b", math.pi / 3), ("c", math.pi / 2),
+                 ("d", 7 * math.pi / 12), ("e", 17 * math.pi / 24), ("f", 3 * math.pi / 4))
+
+    def __init__(self) -> None:
+        super().__init__()
+        #: Fig. 4a: the lower sphere's height u_z0 / H = sin tau over half a period
+        self.drive = ColumnDataSource({"tau": [], "uz": [], "touch": []}, name="radii_drive")
+        self.levels = ColumnDataSource({"y": [], "label": []}, name="radii_levels")
+        self.bracket = ColumnDataSource({"x": [], "lo": [], "hi": [], "mid": [], "label": []},
+                                        name="radii_bracket")
+        #: Fig. 4b's disks: the Fig. 6 times that lie in the contact
+        self.disks = ColumnDataSource({"tau": [], "a": [], "label": []}, name="radii_disks")
+
+    @cached_property
+    def drive_figure(self):
+        """Fig. 4a, built on first use: u_z0 / H against tau, the level h / H above which
+        the spheres touch, and the approach scale H - h."""
+        fig = _figure("Height of the lower sphere u_z0 / H (Fig. 4a)", "τ = ωt (rad)",
+                      "u_z0 / H", height=220, x_range=Range1d(0.0, math.pi))
+        fig.line("tau", "uz", source=self.drive, color="black", line_width=2)
+        fig.line("tau", "touch", source=self.drive, color="#D55E00", line_width=4,
+                 legend_label="in contact")
+        fig.hspan(y="y", source=self.levels, line_color="#888888", line_dash="dashed")
+        fig.text(0.05, "y", text="label", source=self.levels, text_baseline="bottom",
+                 text_font_size="12pt")
+        # the approach's amplitude H - h: from the level h up to H (eq 8)
+        fig.segment(x0="x", y0="lo", x1="x", y1="hi", source=self.bracket, color="#0072B2",
+                    line_width=2)
+        fig.scatter("x", "lo", source=self.bracket, marker="dash", angle=math.pi / 2,
+                    size=10, color="#0072B2")
+        fig.text("x", "mid", text="label", source=self.bracket, x_offset=6,
+                 text_baseline="middle", text_font_size="12pt", text_color="#0072B2")
+        _style(fig)
+        fig.legend.location = "bottom_center"
+        return fig
+
+    @property
+    def figure(self):
+        """Fig. 4a above Fig. 4b."""
+        return self._with_drive
+
+    @cached_property
+    def _with_drive(self):
+        main = self.figures[0]
+        main.scatter("tau", "a", source=self.disks, size=12, color="#D55E00",
+                     line_color="black")
+        main.text("tau", "a", text="label", source=self.disks, text_font_size="13pt",
+                  x_offset=6, y_offset=-4, text_font_style="bold")
+        return column(self.drive_figure, main, sizing_mode="stretch_width")
+
+    def update_contact(self, c: Contact) -> None:
+        super().update_contact(c)
+        tau = np.unique(np.concatenate([np.linspace(0.0, math.pi, 241), [c.tau0, c.tau_end]]))
+        uz = c.drive_displacement(tau)  # u_z0 / H = u_x0 / u0 = sin tau (eq 3)
+        s0 = math.sin(c.tau0)
+        self.drive.data = {"tau": tau, "uz": uz, "touch": np.where(
+            (tau >= c.tau0) & (tau <= c.tau_end), uz, np.nan)}
+        self.levels.data = {"y": [s0, 1.0], "label": [f"h / H = sin τ₀ = {s0:.3g}", ""]}
+        x = math.pi / 2 + 0.35
+        self.bracket.data = {"x": [x], "lo": [s0], "hi": [1.0], "mid": [(1.0 + s0) / 2],
+                             "label": ["(H − h) / H: the largest approach"]}
+        marks = [(label, t) for label, t in self.FIG6_TAUS if c.tau0 <= t <= c.tau_end]
+        taus = np.array([t for _, t in marks])
+        self.disks.data = {"tau": taus, "a": c.contact_radius(taus) if marks else taus,
+                           "label": [label for label, _ in marks]}
+
     def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
         line = c.at(tau)
         return {"approach": line.approach, "a": line.contact_radius, "b": line.stick_radius}
 
+    def table(self) -> dict[str, np.ndarray]:
+        """The plotted curves for the CSV download: tau (rad), the approach alpha/(H-h)
+        (eq 8), the contact radius a/a* (eqs 7, 8) and the stick radius b/a* (eq 30)."""
+        d = {k: np.asarray(v) for k, v in self.source.data.items()}
+        return {"tau (rad)": d["tau"], "alpha/(H-h)": d["approach"], "a/a*": d["a"],
+                "b/a*": d["b"]}
+
 
 class MotionScene(CurveScene):
-    """Fig. 9: velocity v2 and displacement u2 of the contact centre, with the drive."""
+    """Fig. 9: velocity v2 and displacement u2 of the contact centre, with the drive, in
+    two panels; drawn a little before and after the contact, so that the jumps of v2 at
+    tau0, tau1 and pi - tau0 show as (nearly) vertical steps."""
 
     name = "motion"
     title = "Contact-centre motion (Fig. 9)"
@@ -401,11 +563,36 @@ class MotionScene(CurveScene):
         ("drive_v", "du₀ₓ/dt / (ω u₀)", "#D55E00", "dotted"),
         ("drive_u", "u₀ₓ / u₀", "#0072B2", "dotted"),
     )
+    panels = (
+        ("Contact-centre velocity (Fig. 9a)", "v / (ω u₀)", ("v2", "drive_v")),
+        ("Contact-centre displacement (Fig. 9b)", "u / u₀", ("u2", "drive_u")),
+    )
+    MARGIN = 0.1  # drawn before and after the contact, as a fraction of its duration
+    STEP = 1e-6  # a jump is drawn over this fraction of the contact's duration
+
+    def grid(self, c: Contact) -> np.ndarray:
+        """The contact's grid, a margin outside it (no contact) and, at tau0, tau1 and
+        pi - tau0, a time just on the other side of each jump (rad)."""
+        span = c.tau_end - c.tau0
+        margin, step = self.MARGIN * span, self.STEP * span
+        inside = super().grid(c)
+        before = np.linspace(c.tau0 - margin, c.tau0 - step, 12)
+        after = np.linspace(c.tau_end + step, c.tau_end + margin, 12)
+        jumps = [] if math.isnan(c.tau1) else [c.tau1 - step]
+        return np.unique(np.concatenate([before, inside, jumps, after]))
 
     def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
         line = c.at(tau)
         return {"v2": line.centre_velocity, "u2": line.centre_displacement,
                 "drive_v": c.drive_velocity(tau), "drive_u": c.drive_displacement(tau)}
+
+    def table(self) -> dict[str, np.ndarray]:
+        """The plotted curves for the CSV download: tau (rad), the contact centre's
+        velocity v2/(omega u0) (eq 42) and displacement u2/u0 (eq 43), and the drive's,
+        (du_x0/dt)/(omega u0) = cos tau and u_x0/u0 = sin tau (eq 3)."""
+        d = {k: np.asarray(v) for k, v in self.source.data.items()}
+        return {"tau (rad)": d["tau"], "v2/(omega u0)": d["v2"], "u2/u0": d["u2"],
+                "(du_x0/dt)/(omega u0)": d["drive_v"], "u_x0/u0": d["drive_u"]}
 
 
 class ImpulseScene(Scene):
@@ -421,9 +608,15 @@ class ImpulseScene(Scene):
     LINEAR_MAX = 30.0
     LOG_RANGE = (1e-3, 1e6)
 
+    #: the psi of the curves of Fig. 7 (a: 0.4, 0.8, 1; b: 2.41, 6.46, 28.35), marked 1
+    #: to 6 on the impulse curve as in Fig. 8
+    FIG7_PSI = (0.4, 0.8, 1.0, 2.41, 6.46, 28.35)
+
     def __init__(self) -> None:
         super().__init__({"psi": [], "ratio": []})
         self.marker = ColumnDataSource({"psi": [], "ratio": []}, name="impulse_marker")
+        self.points = ColumnDataSource({"psi": [], "ratio": [], "label": []},
+                                       name="impulse_points")
         self.log = False
         self._shown: tuple = ()  # (tau0, log, first psi, last psi) of the curve shown
 
@@ -447,6 +640,10 @@ class ImpulseScene(Scene):
         fig = _figure("Tangential impulse T_imp / (μ P_imp)", "ψ", "T_imp / (μ P_imp)",
                       x_axis_type=axis, x_range=x_range)
         fig.line("psi", "ratio", source=self.source, color="black", line_width=3)
+        fig.scatter("psi", "ratio", source=self.points, size=11, color="white",
+                    line_color="black", line_width=2)
+        fig.text("psi", "ratio", text="label", source=self.points, text_font_size="13pt",
+                 text_font_style="bold", x_offset=6, y_offset=-6)
         fig.scatter("psi", "ratio", source=self.marker, size=14, color="#D55E00",
                     line_color="black", level=FRAME_LEVEL)
         _style(fig)
@@ -477,6 +674,9 @@ class ImpulseScene(Scene):
         self._shown = key
         ratio = np.asarray(impulse_ratio(psi, c.tau0), float)
         self.source.data = inline({"psi": psi, "ratio": ratio})
+        marked = np.array(self.FIG7_PSI)
+        self.points.data = {"psi": marked, "ratio": np.asarray(impulse_ratio(marked, c.tau0)),
+                            "label": [str(i) for i in range(1, marked.size + 1)]}
         fig = self.figure
         if self.log:
             fig.x_range.start, fig.x_range.end = psi[0], psi[-1]
@@ -484,40 +684,9 @@ class ImpulseScene(Scene):
             fig.x_range.start, fig.x_range.end = 0.0, psi[-1]
         fig.y_range.start, fig.y_range.end = 0.0, 1.05 * max(float(ratio.max()), 1e-9)
 
+    def table(self) -> dict[str, np.ndarray]:
+        """The plotted curve for the CSV download: psi and the impulse ratio
+        T_imp/(mu P_imp) (eq 41) at the contact's tau0."""
+        d = {k: np.asarray(v) for k, v in self.source.data.items()}
+        return {"psi": d["psi"], "T_imp/(mu P_imp)": d["ratio"]}
 
-class ReadoutScene(Scene):
-    """The derived quantities as a two-column table drawn on a canvas.
-
-    A table of text in the page (an HTML pane, a Bokeh Div) makes the browser lay out
-    the whole page again whenever its text changes, ~50 ms per slider move; drawn as
-    text glyphs, new values only repaint this canvas.
-    """
-
-    name = "readout"
-    ROW_PX = 30  # height of a row (px)
-
-    def __init__(self) -> None:
-        super().__init__({"y": [], "quantity": [], "value": []})
-        self.rows = 0
-        fig = figure(height=self.ROW_PX, sizing_mode="stretch_width", min_width=300,
-                     x_range=Range1d(0, 1), y_range=Range1d(0, 1), toolbar_location=None,
-                     tools="", min_border=0, outline_line_color=None)
-        fig.axis.visible = False
-        fig.grid.visible = False
-        fig.hspan("y", source=self.source, line_color="#dddddd", line_width=1,
-                  level=FRAME_LEVEL)
-        for col, x, weight in (("quantity", 0.02, "normal"), ("value", 0.58, "bold")):
-            fig.text(x, "y", text=col, source=self.source, text_baseline="top",
-                     text_font_size="13pt", text_font_style=weight, y_offset=6,
-                     level=FRAME_LEVEL)
-        self.figure = fig
-
-    def show(self, rows: list[tuple[str, str]]) -> None:
-        """Show (quantity, value) rows, top to bottom."""
-        n = len(rows)
-        if n != self.rows:  # the table grows or shrinks only with the physical inputs
-            self.rows = n
-            self.figure.height = self.ROW_PX * max(n, 1)
-            self.figure.y_range.start, self.figure.y_range.end = 0, max(n, 1)
-        self.source.data = {"y": [float(n - i) for i in range(n)],
-                            "quantity": [k for k, _ in rows], "value": [v for _, v in rows]}

@@ -23,11 +23,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from bokeh.models import ColumnDataSource, Label, Range1d
+from bokeh.models import ColumnDataSource, Label, Range1d, SaveTool
 from bokeh.plotting import figure
 
 from app.phases import STICK_COLOR, style
-from app.scenes import FRAME_LEVEL, Scene, _style
+from app.scenes import FRAME_LEVEL, Scene, _style, png_name
+from app.wire import inline
 from core import Contact
 
 DRIVE = 0.15  # the drawn normal amplitude H, in sphere radii
@@ -141,6 +142,7 @@ class SpheresScene(Scene):
         fig = figure(title="Two spheres in section", width=420, height=640,
                      x_range=Range1d(-1.6, 1.6), y_range=Range1d(-2.45, 2.1),
                      tools="save", toolbar_location="above")
+        fig.select_one(SaveTool).filename = png_name(fig.title.text)
         fig.axis.visible = False
         fig.grid.visible = False
         s = self.sources
@@ -159,12 +161,13 @@ class SpheresScene(Scene):
                     angle="angle", color="#a4161a", level=FRAME_LEVEL)
         fig.text("lx", "ly", text="label", source=s["spheres_forces"], text_font_size="13pt",
                  text_color="#a4161a", text_baseline="middle", level=FRAME_LEVEL)
-        fig.text(-1.5, 2.05, text="text", source=s["spheres_badge"], text_color="color",
-                 text_font_size="20pt", text_font_style="bold", text_baseline="top",
-                 level=FRAME_LEVEL)
+        self.badge = fig.text(-1.5, 2.05, text="text", source=s["spheres_badge"],
+                              text_color="color", text_font_size="20pt",
+                              text_font_style="bold", text_baseline="top", level=FRAME_LEVEL)
         self.note = Label(x=-1.55, y=-2.42, text="", text_font_size="11pt",
                           text_color="#333333", name="spheres_note")
-        self.h_label = Label(x=-1.55, y=-2.05, text="", text_font_size="11pt",
+        self.h_label = Label(x=-1.55, y=-1.78, text="", text_font_size="11pt",
+                             text_baseline="top",
                              text_color="#333333", name="spheres_rest_note")
         fig.add_layout(self.note)
         fig.add_layout(self.h_label)
@@ -176,13 +179,13 @@ class SpheresScene(Scene):
         H, u0 = drawn_amplitudes(c)
         rest_top = -H * math.sin(c.tau0)  # the gap h below the upper sphere
         cy = rest_top - 1.0
-        show(self.rest, {"x": np.cos(_ANGLES), "y": cy + np.sin(_ANGLES)})
+        show(self.rest, inline({"x": np.cos(_ANGLES), "y": cy + np.sin(_ANGLES)}))
         reach = 1.6  # the drive line, beyond both ends of the stroke
         show(self.still, {"x0": [-reach * u0], "y0": [cy - reach * H],
                           "x1": [reach * u0], "y1": [cy + reach * H]})
         gap = "dashed: at rest, h > 0 (a gap)" if c.tau0 > 0 else \
             "dashed: at rest, h ≤ 0 (a preload)"
-        self.h_label.text = f"{gap}; drive line at θ = {math.degrees(c.theta):.1f}°"
+        self.h_label.text = f"{gap}\ndrive line at θ = {math.degrees(c.theta):.1f}°"
         self.note.text = scale_note(c)
 
     @staticmethod
@@ -192,7 +195,7 @@ class SpheresScene(Scene):
 
     def update_tau(self, c: Contact, tau: float) -> None:
         for name, cols in drawing(c, np.array([tau])).items():
-            show(self.sources[name], {k: row(v[0]) for k, v in cols.items()})
+            show(self.sources[name], inline({k: row(v[0]) for k, v in cols.items()}))
 
 
 def show(source: ColumnDataSource, data: dict) -> None:

@@ -454,3 +454,83 @@ def test_the_motor_card_opens_computes_its_curve_and_drives_the_scenes(browser, 
     page.wait_for_function("() => location.search.includes('motor_x0=')", timeout=10_000)
     assert errors(console) == []
     page.close()
+
+
+def test_the_papers_figures_in_full_are_drawn(browser, url) -> None:
+    """Fig. 9's two panels (the v2 step at tau1 in the drawn data), Fig. 4a above 4b, and
+    Fig. 6's six profiles one click away, each painted on its own canvas."""
+    page, console = open_explorer(browser, url)
+    figure_views = """(titles) => __views((v) => v.model != null && v.model.type === "Figure"
+        && titles.includes(v.model.title.text)).map((v) => {
+          const r = v.el.getBoundingClientRect(); return [r.width, r.height]; })"""
+    page.get_by_text("Centre motion (Fig. 9)", exact=True).click()
+    page.wait_for_function("() => (__col('motion', 'v2') || []).length > 0", timeout=20_000)
+    panels = ["Contact-centre velocity (Fig. 9a)", "Contact-centre displacement (Fig. 9b)"]
+    page.wait_for_function(f"() => ({figure_views})({panels!r}).length === 2", timeout=10_000)
+    assert all(w > 300 and h > 200 for w, h in page.evaluate(f"({figure_views})", panels))
+    tau, v2 = column(page, "motion", "tau"), column(page, "motion", "v2")
+    c = Contact(math.sqrt(2) + 1, math.pi / 6)
+    i = int(np.searchsorted(tau, c.tau1))
+    assert tau[i] - tau[i - 1] < 1e-5 and v2[i - 1] < -0.3 < 0.1 < v2[i]  # the jump
+    page.get_by_text("Radii (Fig. 4b)", exact=True).click()
+    page.wait_for_function("() => (__col('radii_drive', 'uz') || []).length > 0",
+                           timeout=20_000)
+    assert column(page, "radii_disks", "label") == list("abcdef")
+    page.get_by_text("Fig. 6 in full", exact=False).click()
+    titles = ["6a: τ = π/4, slip", "6b: τ = π/3, slip", "6c: τ = π/2, slip",
+              "6d: τ = 7π/12, partial stick", "6e: τ = 17π/24, partial stick",
+              "6f: τ = 3π/4, counter-slip"]
+    page.wait_for_function(f"() => ({figure_views})({titles!r}).length === 6", timeout=20_000)
+    assert all(w > 150 and h > 150 for w, h in page.evaluate(f"({figure_views})", titles))
+    assert errors(console) == []
+    page.close()
+
+
+#: The page boxes of the plots with these titles, and the page's scroll extent.
+JS_PLOT_BOXES = """(titles) => {
+  const boxes = {};
+  for (const v of __views((v) => v.model != null && v.model.type === "Figure"
+      && v.model.title != null && titles.includes(v.model.title.text))) {
+    const r = v.el.getBoundingClientRect();
+    boxes[v.model.title.text] = [r.left, r.top, r.right, r.bottom];
+  }
+  const s = document.scrollingElement;
+  return {boxes, scroll: [s.scrollWidth, s.scrollHeight], view: [innerWidth, innerHeight]};
+}"""
+
+
+@pytest.mark.parametrize(("width", "height"), [(1280, 720), (1920, 1080)])
+def test_the_presentation_view_fits_one_screen(browser, url, width: int, height: int) -> None:
+    """view=present: the spheres with their phase badge, the traction profile, the disc
+    and T(tau) are all on the screen, nothing to scroll; Play animates them; the button
+    leads to the full page with the same parameters."""
+    page, console = open_explorer(browser, url + "?view=present&psi=3.5", width=width,
+                                  height=height)
+    titles = ["Two spheres in section", "Traction profile", "Contact disc (top view)",
+              "Tangential force T / T₀"]
+    page.wait_for_function(f"() => Object.keys(({JS_PLOT_BOXES})({titles!r}).boxes).length"
+                           " === 4", timeout=20_000)
+    page.wait_for_timeout(500)
+    shown = page.evaluate(f"({JS_PLOT_BOXES})", titles)
+    assert shown["scroll"][0] <= width and shown["scroll"][1] <= height, shown
+    for title, (left, top, right, bottom) in shown["boxes"].items():
+        assert 0 <= left < right <= width and 0 <= top < bottom <= height, (title, shown)
+        assert right - left > 200 and bottom - top > 200, (title, shown)
+    assert column(page, "spheres_badge", "text") == [phase_of(3.5, math.pi / 6, 17 * math.pi / 24)]
+    if width == 1280:
+        ARTIFACTS.mkdir(exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / "presentation-1280x720.png"))
+    page.get_by_role("button", name="▶ Play").click()
+    x0 = column(page, "force_marker", "x")[0]
+    page.wait_for_function("(v) => __col('force_marker', 'x')[0] !== v", arg=x0,
+                           timeout=10_000)
+    page.get_by_role("button", name="‖ Pause").click()
+    page.wait_for_function("() => (__col('frames', 'tau') || []).length === 0",
+                           timeout=10_000)
+    page.wait_for_function("() => location.search.includes('view=present')", timeout=5000)
+    page.get_by_role("button", name="All scenes and controls").click()
+    page.wait_for_function("() => !location.search.includes('view=')", timeout=10_000)
+    page.get_by_text("Curves over the contact").wait_for(timeout=30_000)  # the full page
+    assert "psi=3.5" in page.evaluate("() => location.search")
+    assert errors(console) == []
+    page.close()

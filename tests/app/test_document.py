@@ -6,9 +6,11 @@ Every plotted number must be exactly what `core` computes for the current state.
 from __future__ import annotations
 
 import base64
+import html
 import io
 import math
 import re
+import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
@@ -20,8 +22,10 @@ import app.widgets
 from app import spheres
 from app.explorer import CONTACT_SECONDS, Explorer
 from app.formulas import formulas
+from app.notes import NOTES
 from app.phases import STYLES
 from app.player import frame_index, frame_taus
+from app.readout import CAPTION, table_html
 from app.scenes import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
 from app.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
 from core import PHASE_NAMES, Contact, Phase, impulse_ratio
@@ -66,6 +70,8 @@ def assert_sources_match_core(ex: Explorer) -> None:
     eq(d["b"], c.stick_radius(grid))
 
     d = ex.motion.source.data
+    grid = ex.motion.grid(c)  # with the jumps and a margin outside the contact
+    eq(d["tau"], grid)
     eq(d["v2"], c.centre_velocity(grid))
     eq(d["u2"], c.centre_displacement(grid))
     eq(d["drive_v"], c.drive_velocity(grid))
@@ -119,12 +125,33 @@ def test_widget_change_recomputes_every_source(ex: Explorer, widget: str, value:
     assert ex.state.preset == ""  # an edit leaves the preset
 
 
+def readout_rows(ex: Explorer) -> list[tuple[str, str]]:
+    """The (quantity, value) rows the derived-quantities table shows (its HTML read as
+    XML: the table is well-formed, its text escaped)."""
+    table = ET.fromstring(ex.readout.pane.object)
+    return [(tr.find("th").text or "", tr.find("td").text or "")
+            for tr in table.find("tbody")]
+
+
 def test_theta_readout_follows_mu_and_nu(ex: Explorer) -> None:
     ex.mu_slider.value = 0.5
     c = contact_of(ex)
-    values = ex.readout.source.data["value"]
+    rows = readout_rows(ex)
+    assert rows == Explorer.readout_rows(c)
+    values = [v for _, v in rows]
     assert f"{math.degrees(c.theta0):.3f}°" in values
     assert f"{math.degrees(c.theta):.3f}°" in values
+
+
+def test_readout_is_a_table_of_text() -> None:
+    """Row headers and a caption for a screen reader; markup in a name or value is shown
+    as text, never interpreted."""
+    rows = [("<b>q</b> & co", "<script>alert(1)</script>"), ("ψ", "1 < 2")]
+    table = ET.fromstring(table_html(rows))
+    assert table.tag == "table" and table.find("caption").text == CAPTION
+    assert [th.get("scope") for th in table.iter("th")] == ["col", "col", "row", "row"]
+    assert [(tr.find("th").text, tr.find("td").text) for tr in table.find("tbody")] == rows
+    assert "<script>" not in table_html(rows) and "<b>" not in table_html(rows)
 
 
 def test_tau_change_updates_only_tau_dependent_data(ex: Explorer) -> None:
@@ -178,11 +205,12 @@ def test_moving_psi_sends_only_the_impulse_marker(ex: Explorer) -> None:
 
 def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> None:
     """What a slider move sends decides the browser's work: new data for the plots that
-    show psi and the caption drawn on the traction canvas; the curve scenes of closed
-    tabs send nothing (they catch up when opened).  No text pane, no range, no title
-    (each makes the browser restyle or lay out the page again); the number box shows
-    the slider's value.  (The slider's own value is in the set because the move is made
-    here, server side; Panel does not send a browser's change back.)"""
+    show psi, the caption drawn on the traction canvas and the derived-quantities table's
+    text; the curve scenes of closed tabs send nothing (they catch up when opened).  No
+    other text pane, no range, no title (each makes the browser restyle or lay out the
+    page again); the number box shows the slider's value.  (The slider's own value is in
+    the set because the move is made here, server side; Panel does not send a browser's
+    change back.)"""
     doc = Document()
     ex.view().server_doc(doc)
     ex.psi_slider.value = 2.5  # leaves the preset: the preset menu changes this once
@@ -192,9 +220,9 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
     changed = {(type(e.model).__name__, e.model.name, getattr(e, "attr", "data"))
                for e in events}
     data = {("ColumnDataSource", n, "data") for n in (
-        "traction", "disc", "force", "force_marker", "force_landmarks", "readout",
+        "traction", "disc", "force", "force_marker", "force_landmarks",
         "spheres_drive", "spheres_lower", "spheres_patch", "spheres_forces")}
-    assert changed == data | {("Label", "traction_caption", "text"),
+    assert changed == data | {("Label", "traction_caption", "text"), ("HTML", None, "text"),
                               ("Label", "spheres_rest_note", "text"),
                               ("Slider", None, "value"), ("TextInput", None, "value"),
                               ("TextInput", None, "value_input")}
@@ -213,9 +241,10 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
 def test_legend_entries_are_static_proxies_of_the_curves(ex: Explorer) -> None:
     """A legend whose renderers' data change is repainted with them; the entries show
     empty copies instead, whose click handler names the real curves by id only."""
+    items = [item for fig in ex.motion.figures for item in fig.legend[0].items]
     fig = ex.motion.figure
-    (legend,) = fig.legend
-    for item, (col, label, color, _) in zip(legend.items, ex.motion.curves, strict=True):
+    curves = [ex.motion.curves[i] for i in (0, 2, 1, 3)]  # v2, drive_v | u2, drive_u
+    for item, (col, label, color, _) in zip(items, curves, strict=True):
         (proxy,) = item.renderers
         assert item.label.value == label
         assert all(len(v) == 1 and math.isnan(v[0]) for v in proxy.data_source.data.values())
@@ -243,9 +272,9 @@ def test_snapped_ranges_hold_the_data_and_stay_put_for_small_moves() -> None:
 
 
 def test_radii_and_force_ranges_stay_put_for_a_psi_step(ex: Explorer) -> None:
-    before = [(f.y_range.start, f.y_range.end) for f in (ex.force.figure, ex.radii.figure)]
+    before = [(f.y_range.start, f.y_range.end) for f in (ex.force.figure, ex.radii.figures[0])]
     ex.psi_slider.value = ex.psi_slider.value + 0.01
-    after = [(f.y_range.start, f.y_range.end) for f in (ex.force.figure, ex.radii.figure)]
+    after = [(f.y_range.start, f.y_range.end) for f in (ex.force.figure, ex.radii.figures[0])]
     assert after == before
 
 
@@ -385,8 +414,11 @@ def test_a_link_restores_the_very_state_preset_included(name: str) -> None:
 
 
 def read_csv(text: str) -> dict[str, np.ndarray]:
-    names = text.splitlines()[0].split(",")
-    body = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=1, ndmin=2)
+    """The columns of a CSV download, after its '#' lines and its line of names."""
+    lines = text.splitlines()
+    k = next(i for i, line in enumerate(lines) if not line.startswith("#"))
+    names = lines[k].split(",")
+    body = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=k + 1, ndmin=2)
     return {n: body[:, i] for i, n in enumerate(names)}
 
 
@@ -394,22 +426,29 @@ def test_csv_curves_hold_the_plotted_data(ex: Explorer) -> None:
     text = ex.csv_text("curves")
     assert not re.search(r"(^|,)-0(,|$)", text, re.MULTILINE)  # no negative zeros
     table = read_csv(text)
-    assert list(table) == ["tau", "T", "muP", "neg_muP", "approach", "a", "b", "v2", "u2",
-                           "drive_v", "drive_u"]
+    assert list(table) == ["tau (rad)", "T/T0", "mu P/T0", "-mu P/T0", "alpha/(H-h)", "a/a*",
+                           "b/a*", "v2/(omega u0)", "u2/u0", "(du_x0/dt)/(omega u0)",
+                           "u_x0/u0"]
     c = contact_of(ex)
-    np.testing.assert_allclose(table["tau"], c.tau_grid(CURVE_POINTS), rtol=1e-9)
-    np.testing.assert_allclose(table["T"], c.tangential_force(table["tau"]), atol=1e-9)
-    np.testing.assert_allclose(table["b"], ex.radii.source.data["b"], rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(table["tau (rad)"], c.tau_grid(CURVE_POINTS), rtol=1e-9)
+    np.testing.assert_allclose(table["T/T0"], c.tangential_force(table["tau (rad)"]),
+                               atol=1e-9)
+    np.testing.assert_allclose(table["b/a*"], ex.radii.source.data["b"], rtol=1e-9,
+                               atol=1e-12)
 
 
 def test_csv_traction_and_impulse(ex: Explorer) -> None:
     tr = read_csv(ex.csv_text("traction"))
-    np.testing.assert_allclose(tr["traction"], ex.traction.source.data["traction"], atol=1e-9)
+    np.testing.assert_allclose(tr["tau_u/(mu p*)"], ex.traction.source.data["traction"],
+                               atol=1e-9)
     im = read_csv(ex.csv_text("impulse"))
-    np.testing.assert_allclose(im["ratio"], impulse_ratio(im["psi"], ex.state.tau0),
+    np.testing.assert_allclose(im["T_imp/(mu P_imp)"], impulse_ratio(im["psi"], ex.state.tau0),
                                rtol=1e-8, atol=1e-12)
     assert ex.downloads["impulse"].callback().read() == ex.csv_text("impulse")
     assert ex.downloads["impulse"].filename == "zharii_impulse_psi2.414_tau0_0.5236_mu0.2_nu0.3.csv"
+    assert ex.downloads["traction"].callback().read() == ex.csv_text("traction")
+    assert ex.downloads["traction"].filename == (
+        "zharii_traction_psi2.414_tau0_0.5236_mu0.2_nu0.3_tau2.225.csv")
 
 
 def test_download_named_after_the_parameters_at_the_click(ex: Explorer) -> None:
@@ -526,9 +565,9 @@ def test_physical_inputs_give_si_scales(ex: Explorer) -> None:
     assert (s.psi, s.tau0) == (c.psi, c.tau0)
     assert ex.psi_slider.disabled and ex.tau0_slider.disabled
     assert_sources_match_core(ex)
-    assert f"{c.scales.T0:.4g} N" in ex.readout.source.data["value"]
+    assert f"{c.scales.T0:.4g} N" in [v for _, v in readout_rows(ex)]
     table = read_csv(ex.csv_text("curves"))
-    np.testing.assert_allclose(table["T_N"], table["T"] * c.scales.T0, rtol=1e-9)
+    np.testing.assert_allclose(table["T (N)"], table["T/T0"] * c.scales.T0, rtol=1e-9)
     assert " N\na = " in ex.traction.caption.text
 
 
@@ -659,7 +698,7 @@ def test_time_axes_mark_the_papers_landmarks(ex: Explorer, psi: float) -> None:
         d = scene.landmarks.data
         assert d["x"] == expected
         assert d["label"] == ["τ₀", "π/2", *([] if psi <= 1 else ["τ₁"]), "π−τ₀"]
-        assert d["hi"] == [scene.figure.y_range.end] * len(expected)
+        assert d["hi"] == [scene.figures[0].y_range.end] * len(expected)
 
 
 # ---------------------------------------------------------- the two spheres
@@ -726,3 +765,130 @@ def test_the_player_animates_the_spheres() -> None:
             assert list(np.asarray(data[col])) == list(v.ravel()), (name, col)
     ex.state.playing = False
     assert all(len(src.data) == 0 for src in ex.player.sprite_frames.values())
+
+
+# ---------------------------------------------------------- the paper's figures in full
+
+
+def test_fig9_has_two_panels_and_draws_the_velocity_jumps(ex: Explorer) -> None:
+    """v2 jumps at tau0 (from rest), at tau1 (partial stick to counter-slip) and at
+    pi - tau0 (to rest): the grid holds a time just outside each jump, so the curve
+    steps from core's value on one side to core's value on the other."""
+    ex.tabs.active = ex.tabbed.index(ex.motion)
+    c = contact_of(ex)
+    assert [f.title.text for f in ex.motion.figures] == [
+        "Contact-centre velocity (Fig. 9a)", "Contact-centre displacement (Fig. 9b)"]
+    assert ex.motion.figure.children == ex.motion.figures  # one above the other
+    d = {k: np.asarray(v) for k, v in ex.motion.source.data.items()}
+    tau, v2 = d["tau"], d["v2"]
+    eq(v2, c.centre_velocity(tau))
+    eq(d["u2"], c.centre_displacement(tau))
+    span = c.tau_end - c.tau0
+    assert tau[0] < c.tau0 - 0.09 * span and tau[-1] > c.tau_end + 0.09 * span
+    for jump in (c.tau0, c.tau1, c.tau_end):
+        i = int(np.searchsorted(tau, jump))
+        if jump == c.tau_end:
+            i += 1  # pi - tau0 is the last time in contact
+        before, after = tau[i - 1], tau[i]
+        assert after - before <= 1.01e-6 * span, jump
+        assert abs(v2[i] - v2[i - 1]) > 0.1, (jump, v2[i - 1], v2[i])  # drawn as a step
+    assert v2[0] == 0 and v2[-1] == 0  # at rest outside the contact
+    # the markers of each panel are drawn in that panel's range
+    m = ex.motion.marker.data
+    ranges = [ex.motion.figures[0].y_range, ex.motion.figures[1].y_range] * 2
+    assert m["lo"] == [r.start for r in ranges] and m["hi"] == [r.end for r in ranges]
+
+
+def test_fig8_marks_the_psi_of_fig7(ex: Explorer) -> None:
+    ex.tabs.active = ex.tabbed.index(ex.impulse)
+    d = ex.impulse.points.data
+    psi = [0.4, 0.8, 1.0, 2.41, 6.46, 28.35]
+    eq(d["psi"], psi)
+    eq(d["ratio"], impulse_ratio(np.array(psi), ex.state.tau0))
+    assert d["label"] == ["1", "2", "3", "4", "5", "6"]
+
+
+def test_fig4_shows_the_drive_and_the_fig6_times(ex: Explorer) -> None:
+    ex.tabs.active = ex.tabbed.index(ex.radii)
+    c = contact_of(ex)
+    drive = {k: np.asarray(v) for k, v in ex.radii.drive.data.items()}
+    eq(drive["uz"], np.sin(drive["tau"]))  # u_z0 / H (eq 3)
+    inside = (drive["tau"] >= c.tau0) & (drive["tau"] <= c.tau_end)
+    eq(drive["touch"][inside], drive["uz"][inside])
+    assert np.isnan(drive["touch"][~inside]).all()
+    assert ex.radii.levels.data["y"] == [math.sin(c.tau0), 1.0]
+    disks = ex.radii.disks.data
+    eq(disks["tau"], [math.pi / 4, math.pi / 3, math.pi / 2, 7 * math.pi / 12,
+                      17 * math.pi / 24, 3 * math.pi / 4])
+    eq(disks["a"], c.contact_radius(disks["tau"]))
+    assert disks["label"] == list("abcdef")
+    ex.tau0_slider.value = 1.2  # a short contact holds only some of the times
+    c = contact_of(ex)
+    assert all(c.tau0 <= t <= c.tau_end for t in ex.radii.disks.data["tau"])
+    assert ex.radii.disks.data["label"] == ["c", "d"]  # pi/2, 7 pi/12 in [1.2, 1.94]
+
+
+def test_fig6_small_multiples_are_the_six_profiles_of_the_paper(ex: Explorer) -> None:
+    """One click (the card) shows Fig. 6a-f: each panel the traction core gives at its
+    preset's time, titled with the time and the phase (core's rule: 6f at tau1 is
+    counter-slip)."""
+    assert ex.fig6_card.objects == []  # built on first opening
+    ex.fig6_card.collapsed = False
+    (pane,) = ex.fig6_card.objects
+    titles = [fig.title.text for fig, *_ in pane.object.children]
+    assert titles == ["6a: τ = π/4, slip", "6b: τ = π/3, slip", "6c: τ = π/2, slip",
+                      "6d: τ = 7π/12, partial stick", "6e: τ = 17π/24, partial stick",
+                      "6f: τ = 3π/4, counter-slip"]
+    for (fig, *_), key in zip(pane.object.children, ("fig6a", "fig6b", "fig6c", "fig6d",
+                                                     "fig6e", "fig6f"), strict=True):
+        p = PRESETS[key]
+        c = Contact(p.psi, p.tau0)
+        (source,) = {r.data_source for r in fig.renderers}
+        r = np.asarray(source.data["r"])
+        eq(source.data["traction"], c.traction(r, p.tau))
+        eq(source.data["upper"], c.pressure(r, p.tau))
+        b = float(c.stick_radius(p.tau))
+        assert (np.asarray(source.data["stick_hi"]) > 0).any() == (b > 0)
+
+
+def test_each_preset_says_what_to_notice(ex: Explorer) -> None:
+    """Every preset has its note, shown while it is on screen and hidden once left; the
+    notes' checkable claims hold."""
+    assert set(NOTES) == set(PRESETS)
+    for key in PRESETS:
+        ex.preset_select.value = key
+        assert ex.note.visible and ex.note.object == html.escape(NOTES[key])
+    ex.psi_slider.value = 3.0  # leaves the preset
+    assert not ex.note.visible
+    c = Contact(SQRT2_1, math.pi / 6)
+    assert c.tau1 == pytest.approx(3 * math.pi / 4)  # figs 4, 6f
+    assert int(c.phase(math.pi / 4)) == Phase.SLIP == int(c.phase(math.pi / 2))  # 6a-6c
+    assert int(c.phase(7 * math.pi / 12)) == Phase.PARTIAL_STICK  # 6d
+    assert float(c.stick_radius(math.pi / 2 + 1e-9)) == pytest.approx(
+        float(c.contact_radius(math.pi / 2)), rel=1e-6)  # b starts as large as a
+    T = c.tangential_force(np.array([math.pi / 2, 7 * math.pi / 12, 17 * math.pi / 24]))
+    assert T[1] > 0 > T[2] and abs(T[2]) < 0.15 * T[0]  # 6e: T changed sign, small
+    assert int(c.phase(PRESETS["fig6f"].tau)) == Phase.COUNTER_SLIP  # 6f, at tau1
+    for psi in (0.4, 0.8, 1.0):  # 7a: full stick, symmetric about pi/2
+        c = Contact(psi, math.pi / 6)
+        tau = np.linspace(c.tau0, c.tau_end, 101)
+        assert set(c.phase(tau[1:-1]).tolist()) == {Phase.FULL_STICK}
+        np.testing.assert_allclose(c.tangential_force(tau), c.tangential_force(tau[::-1]),
+                                   atol=1e-12)
+    taus = [Contact(p, math.pi / 6).tau1 for p in (2.41, 6.46, 28.35)]  # 7b
+    np.testing.assert_allclose(taus, [3 * math.pi / 4, 2 * math.pi / 3, 7 * math.pi / 12],
+                               atol=2e-3)
+    ratios = impulse_ratio(np.array([0.5, 1.0, 2.0]), math.pi / 6)  # 8: largest at 1
+    assert ratios[1] > ratios[0] and ratios[1] > ratios[2]
+
+
+def test_the_view_is_chosen_by_the_url_and_kept_in_it() -> None:
+    ex = Explorer(query={"view": "present", "psi": "3"})
+    assert ex.view_name == "present" and ex.messages == [] and ex.state.psi == 3.0
+    root = ex.view().get_root(Document())  # the one-screen page (sizes: browser test)
+    assert root.select_one({"name": "spheres_badge"}) is not None
+    assert ex.spheres.badge.glyph.text_font_size == "26pt"
+    ex = Explorer(query={"view": "<b>x</b>"})
+    assert ex.view_name == "" and ex.messages == [
+        "view = '<b>x</b>' is unknown (known: present); the full page is shown"]
+    assert "&lt;b&gt;" in ex.message.object  # shown as text
