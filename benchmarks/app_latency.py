@@ -43,10 +43,12 @@ from explorer_browser import (  # noqa: E402
     open_explorer,
 )
 
-#: What a psi move changes (the impulse curve itself depends on tau0 only: its marker);
-#: the benchmark waits for those of them drawn in a plot in the page's view.
+#: What a psi move changes (the impulse curve itself depends on tau0 only: its marker;
+#: `readout` is the derived table's source in revisions that drew it on a canvas); the
+#: benchmark waits for those of them drawn in a plot in the page's view.
 PSI_SOURCES = ["traction", "disc", "force", "force_marker", "impulse_marker", "radii",
-               "radii_marker", "motion", "motion_marker", "readout"]
+               "radii_marker", "motion", "motion_marker", "readout", "spheres_lower",
+               "spheres_patch"]
 
 #: The names among `names` of sources drawn by a plot in the viewport.
 JS_VISIBLE_SOURCES = """(names) => {
