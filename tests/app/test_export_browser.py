@@ -64,6 +64,7 @@ def open_page(browser, url: str, scale: float):
 @pytest.mark.parametrize(("title", "file", "scale"), [
     ("Traction profile", "zharii_traction_profile.png", 1),
     ("Tangential force T / T₀", "zharii_tangential_force_t_t0.png", 2),
+    ("Two spheres in section", "zharii_two_spheres_in_section.png", 1),
 ])
 def test_the_save_tool_downloads_a_png_of_the_plot(browser, url, tmp_path, title, file,
                                                    scale) -> None:
