@@ -534,3 +534,47 @@ def test_the_presentation_view_fits_one_screen(browser, url, width: int, height:
     assert "psi=3.5" in page.evaluate("() => location.search")
     assert errors(console) == []
     page.close()
+
+
+#: Elements that overflow their box or stick out of their card: (what, by how many px).
+#: Bokeh's plot frames clip their drawing on purpose, and a caption for screen readers
+#: only is clipped to nothing: neither counts.
+JS_OVERFLOWS = """() => {
+  const found = [];
+  const name = (el) => el.tagName.toLowerCase() + (el.className && el.className.baseVal
+      === undefined ? "." + String(el.className).split(" ")[0] : "");
+  const walk = (root, card) => {
+    for (const el of root.querySelectorAll("*")) {
+      const inCard = el.classList.contains("card") ? el : card;
+      if (el.shadowRoot) walk(el.shadowRoot, inCard);
+      if (el.classList.contains("bk-CartesianFrame")) continue;
+      const cs = getComputedStyle(el);
+      if (cs.clip === "rect(0px, 0px, 0px, 0px)" || cs.clipPath === "inset(50%)") continue;
+      const over = el.scrollWidth - el.clientWidth;
+      if (el.clientWidth > 0 && over > 1 && cs.overflowX !== "visible") {
+        found.push([name(el), over]);
+      }
+      if (inCard && inCard !== el && el.textContent.trim() && el.children.length === 0) {
+        const r = el.getBoundingClientRect(), c = inCard.getBoundingClientRect();
+        const out = Math.max(r.right - c.right, c.left - r.left);
+        if (r.width > 0 && out > 1) found.push([name(el) + " out of its card", out]);
+      }
+    }
+  };
+  walk(document, null);
+  return found;
+}"""
+
+
+@pytest.mark.parametrize(("width", "height"), [(1024, 768), (1280, 720), (1920, 1080),
+                                               (2560, 1440)])
+def test_nothing_is_clipped_from_1024_to_2560_wide(browser, url, width: int,
+                                                    height: int) -> None:
+    """The formulas (partial stick's, the longest), the tables and every card's text fit
+    their cards at every screen size: nothing overflows or is scrolled out of view."""
+    page, console = open_explorer(browser, url, width=width, height=height)
+    page.wait_for_function("() => document.querySelectorAll('*').length > 0")
+    page.wait_for_timeout(1500)  # KaTeX typeset
+    assert page.evaluate(JS_OVERFLOWS) == []
+    assert errors(console) == []
+    page.close()
