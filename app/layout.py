@@ -176,8 +176,8 @@ def page(ex: Explorer) -> pn.Column:
     main = [
         ex.message,
         pn.FlexBox(
-            card(pn.pane.Bokeh(ex.spheres.figure), title="The two spheres (Fig. 2)",
-                 flex="0 0 440px"),
+            card(pn.pane.Bokeh(ex.spheres.figure, sizing_mode="stretch_width"),
+                 title="The two spheres (Fig. 2)", flex="0 1 440px"),
             card(pn.pane.Bokeh(ex.traction.figure, sizing_mode="stretch_width"),
                  title="Traction profile (Fig. 6)", flex="3 1 560px"),
             card(pn.pane.Bokeh(ex.disc.figure), pn.pane.HTML(DISC_KEY),

@@ -41,6 +41,7 @@ def presentation(ex: Explorer) -> pn.Column:
     """The one-screen page of `ex`'s scenes and controls."""
     spheres = ex.spheres.figure
     spheres.width, spheres.height = SPHERES_SIZE
+    spheres.sizing_mode = "fixed"
     ex.spheres.badge.glyph.text_font_size = BADGE_FONT
     traction, disc, force = ex.traction.figure, ex.disc.figure, ex.force.figure
     traction.height = TRACTION_HEIGHT

@@ -139,9 +139,10 @@ class SpheresScene(Scene):
                                       name="spheres_drive")
         self.rest = ColumnDataSource({"x": [], "y": []}, name="spheres_rest")
         # equal scales on both axes: the plot area (about 400 x 560 px) spans 3.2 x 4.5
-        fig = figure(title="Two spheres in section", width=420, height=640,
-                     x_range=Range1d(-1.6, 1.6), y_range=Range1d(-2.45, 2.1),
-                     tools="save", toolbar_location="above")
+        # (scaled down, its aspect kept, on a screen narrower than that)
+        fig = figure(title="Two spheres in section", width=420, height=640, max_width=420,
+                     sizing_mode="scale_width", x_range=Range1d(-1.6, 1.6),
+                     y_range=Range1d(-2.45, 2.1), tools="save", toolbar_location="above")
         fig.select_one(SaveTool).filename = png_name(fig.title.text)
         fig.axis.visible = False
         fig.grid.visible = False

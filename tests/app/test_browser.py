@@ -328,9 +328,11 @@ def test_preset_loads(browser, url) -> None:
 
 
 def test_phone_width_stacks_the_plots(browser, url) -> None:
-    page, console = open_explorer(browser, url, width=400, height=900)
-    boxes = [page.locator(".bk-Canvas").nth(i).bounding_box() for i in range(3)]
-    assert all(b is not None and b["x"] + b["width"] <= 420 for b in boxes), boxes
+    page, console = open_explorer(browser, url, width=390, height=844)
+    boxes = [page.locator(".bk-Canvas").nth(i).bounding_box() for i in range(4)]
+    assert all(b is not None and b["x"] + b["width"] <= 390 for b in boxes), boxes
+    # nothing wider than the phone: no sideways scrolling
+    assert page.evaluate("() => document.scrollingElement.scrollWidth") <= 390
     page.screenshot(path=str(Path(ARTIFACTS, "explorer-phone.png")), full_page=True)
     assert errors(console) == []
     page.close()
