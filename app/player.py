@@ -11,9 +11,11 @@ Everything that depends on tau moves in the same frame: the plots, the caption, 
 phase label, the tau box and slider, and the formula card (at a phase change).  The
 script writes those texts with BokehJS's public `setv(..., {sync: false})`: the
 browser does not send 60 changes a second back to the server, which goes on holding
-the values it last sent.  The script remembers those values (and any the server sends
-while it plays) and puts them back when it stops, so that after a pause the page shows
-exactly what the server holds, and every later change of the server's is drawn.  The
+the values it last sent.  The script remembers those values, and a copy of every source
+it writes frames into (also what the server sends while it plays), and puts them back
+when it stops, so that after a pause the page shows exactly what the server holds, and
+every later change of the server's is drawn (Bokeh sends no change that leaves a value
+as the server holds it: a phase badge paused in the phase the play started in).  The
 server follows the same clock (progress = start + speed * elapsed / CONTACT_SECONDS)
 for the tau a pause, a speed change or a parameter change lands on.
 """
@@ -40,13 +42,23 @@ const st = window.__zharii_player ||
   (window.__zharii_player = {raf: null, held: null, writing: false, watched: new Set()});
 if (st.raf !== null) { cancelAnimationFrame(st.raf); st.raf = null; }
 const get = (src) => (src.data instanceof Map ? Object.fromEntries(src.data) : src.data);
-// the texts this script shows while it plays: [model, property] (controls found on
-// the page by the server; absent in a document without them)
+// what this script changes while it plays: [model, property] (controls found on the
+// page by the server, absent in a document without them; the sources it copies frames
+// into, in place)
 const texts = [[caption, "text"], [phase_label, "text"], [phase_label, "text_color"]];
 for (const [m, a] of [[entry, "value"], [slider, "value"], [formula, "text"]]) {
   if (m) { texts.push([m, a]); }
 }
+for (const src of [traction, disc, ...markers, ...sprites.map((s) => s[0])]) {
+  texts.push([src, "data"]);
+}
 const key = (m, a) => m.id + ":" + a;
+// a copy of what the server holds (a source's columns are copied: frames are written
+// into them in place)
+const copy = (v) => v instanceof Map ? new Map([...v].map(([k, c]) => [k, c.slice()])) :
+  (v !== null && typeof v === "object" && !Array.isArray(v)) ?
+    Object.fromEntries(Object.entries(v).map(([k, c]) => [k, c.slice()])) : v;
+const held = (m, a) => [m, a, copy(m[a])];
 function put(m, a, v) {                        // shown here, not sent to the server
   st.writing = true;
   try { m.setv({[a]: v}, {sync: false}); } finally { st.writing = false; }
@@ -63,11 +75,11 @@ if (K === 0) {                                 // stopped: show what the server 
 if (st.held === null) { st.held = new Map(); }
 for (const [m, a] of texts) {                  // what the server holds, kept up to date
   const k = key(m, a);
-  if (!st.held.has(k)) { st.held.set(k, [m, a, m[a]]); }
+  if (!st.held.has(k)) { st.held.set(k, held(m, a)); }
   if (!st.watched.has(k)) {
     st.watched.add(k);
     m.properties[a].change.connect(() => {
-      if (st.held !== null && !st.writing) { st.held.set(k, [m, a, m[a]]); }
+      if (st.held !== null && !st.writing) { st.held.set(k, held(m, a)); }
     });
   }
 }

@@ -285,6 +285,8 @@ def test_play_moves_the_tau_box_slider_and_formulas_with_the_plots(browser, url)
     play started in (the server then sends no new formulas)."""
     page, console = open_explorer(browser, url)
     psi, tau0 = psi_of(page), math.pi / 6
+    page.wait_for_function(f"() => {{ try {{ return ({JS_SHOWN_TAU})().formula !== ''; }}"
+                           " catch (e) { return false; } }", timeout=30_000)  # typeset
     assert_one_tau_shown(page.evaluate(JS_SHOWN_TAU), psi, tau0)
     for play_ms in (4600, 900, 2300):
         page.get_by_role("button", name="▶ Play").click()
