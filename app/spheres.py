@@ -6,7 +6,8 @@ theta from the vertical).  While they touch, both are drawn flattened at the pla
 midway between them, with the contact patch of radius a (eq 7) on it: the stick disc
 b (eq 30) in the stick colour, the rest of the patch in the colour of what it does
 (slip or counter-slip).  Arrows give the forces on the upper sphere: P / P0 up (eq 9)
-and T / T0 along the drive (eqs 38, 39; T0 = mu P0), on one length scale.  The badge
+and T / T0 along the drive (eqs 38, 39; T0 = mu P0), on one length scale, the contact's
+largest P drawn `ARROW` radii long.  The badge
 names the phase (`Contact.phase`).
 
 Displacements are exaggerated: the normal amplitude H is drawn as `DRIVE` sphere radii
@@ -33,7 +34,7 @@ from core import Contact
 
 DRIVE = 0.15  # the drawn normal amplitude H, in sphere radii
 MAX_SIDE = 0.45  # the largest drawn tangential amplitude u0, in sphere radii
-ARROW = 0.9  # the drawn length of a force equal to its scale (P0 or T0), in radii
+ARROW = 0.9  # the drawn length of the contact's largest P (at pi/2), in radii
 OUTLINE_POINTS = 97  # points of each sphere's outline
 HEAD_SIZE = 13  # arrow heads, screen pixels
 
@@ -57,7 +58,7 @@ def scale_note(c: Contact) -> str:
     else:
         note = "not to scale: H drawn as 0.15 R"
     if u0 < DRIVE * math.tan(c.theta):
-        note += f"; u₀ shortened to {MAX_SIDE:g} R (θ = {math.degrees(c.theta):.1f}°)"
+        note += f", u₀ at most {MAX_SIDE:g} R"
     return note
 
 
@@ -97,16 +98,21 @@ def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
         "color": np.stack([ring, stick, ring], axis=1),
     }
     P, T = line.normal_force, line.tangential_force
-    shown = np.stack([P, np.abs(T)], axis=1) > 1e-3  # a force drawn with its head
-    labels = np.array([[f"P = {p:.2f} P₀", f"T = {t:+.2f} T₀"] for p, t in zip(P, T,
+    # one length scale for both (T / T0 and mu P / T0 = P / P0 are in the same units):
+    # the contact's largest P, (1 - sin tau0)^(3/2) P0 at pi/2 (eq 9), is ARROW long
+    unit = ARROW / (1.0 - s0) ** 1.5
+    shown = np.stack([P, np.abs(T)], axis=1) * unit > 0.01  # a force drawn with its head
+    labels = np.array([[f"P = {p:.3g} P₀", f"T = {t:+.3g} T₀"] for p, t in zip(P, T,
                                                                               strict=True)],
                       dtype=object).reshape(taus.size, 2)
-    tip_x, tip_y = np.stack([xc, xc + ARROW * T], axis=1), np.stack([y + ARROW * P, y], axis=1)
+    tip_x, tip_y = np.stack([xc, xc + unit * T], axis=1), np.stack([y + unit * P, y], axis=1)
     forces = {
         "x0": np.stack([xc, xc], axis=1), "y0": np.stack([y, y], axis=1),
         "x1": tip_x, "y1": tip_y,
-        # labels: P's beside its tip, T's below its tip
-        "lx": tip_x + np.array([0.08, 0.0]), "ly": tip_y - np.array([0.0, 0.12]),
+        # labels: P's beside its tip, T's centred below its arrow
+        "lx": np.stack([xc + 0.08, xc + unit * T / 2], axis=1),
+        "ly": tip_y - np.array([0.0, 0.14]),
+        "align": np.array([["left", "center"]] * taus.size, dtype=object),
         "head": np.where(shown, HEAD_SIZE, 0),
         # the triangle marker points up; turned to point along T
         "angle": np.stack([np.zeros_like(T), np.where(T < 0, math.pi / 2, -math.pi / 2)],
@@ -161,7 +167,8 @@ class SpheresScene(Scene):
         fig.scatter("x1", "y1", source=s["spheres_forces"], marker="triangle", size="head",
                     angle="angle", color="#a4161a", level=FRAME_LEVEL)
         fig.text("lx", "ly", text="label", source=s["spheres_forces"], text_font_size="13pt",
-                 text_color="#a4161a", text_baseline="middle", level=FRAME_LEVEL)
+                 text_color="#a4161a", text_baseline="middle", text_align="align",
+                 level=FRAME_LEVEL)
         self.badge = fig.text(-1.5, 2.05, text="text", source=s["spheres_badge"],
                               text_color="color", text_font_size="20pt",
                               text_font_style="bold", text_baseline="top", level=FRAME_LEVEL)
