@@ -166,10 +166,12 @@ class ExplorerState(param.Parameterized):
                           log_psi=p.log_psi, preset=name)
 
     def reset(self) -> None:
-        """Back to the defaults (the default preset, speed 1), animation stopped."""
+        """Back to the defaults (the default preset, speed 1, the default physical inputs
+        and material, switched off), animation stopped."""
         self.playing = False
         self.speed = self.param.speed.default
-        self.apply_preset(DEFAULT_PRESET)
+        self.apply_preset(DEFAULT_PRESET)  # (switches the physical inputs off first)
+        self.param.update(**{k: self.param[k].default for k in (*SI_KEYS, "material")})
 
     def apply_material(self, name: str) -> None:
         """Copy G (Pa), nu and mu of `core.MATERIALS[name]` into the state and switch the

@@ -337,10 +337,16 @@ def test_fig6_presets_walk_through_the_phases(ex: Explorer) -> None:
 def test_reset_restores_defaults(ex: Explorer) -> None:
     ex.psi_slider.value = 9.0
     ex.speed_slider.value = 2.5
+    ex.material_select.value = "steel"  # physical inputs on, steel's G
+    ex.state.param.update(H=5e-6, omega=1e5)
     ex.state.playing = True
     ex.reset_button.clicks += 1
     assert ex.state.psi == SQRT2_1 and ex.state.preset == DEFAULT_PRESET
     assert not ex.state.playing and ex.state.speed == 1.0
+    assert not ex.state.physical and ex.state.material == "custom"
+    assert all(getattr(ex.state, k) == ExplorerState.param[k].default
+               for k in ("R", "G", "H", "u0", "h", "omega"))
+    assert ex.contact.scales is None and ex.state.mu == 0.2 and ex.state.nu == 0.3
     assert_sources_match_core(ex)
 
 
