@@ -45,7 +45,14 @@ from app.scenes import (
     TractionScene,
 )
 from app.spheres import SpheresScene
-from app.state import PRESETS, ExplorerState, parse_query, parse_tau, parse_value
+from app.state import (
+    PRESETS,
+    ExplorerState,
+    parse_query,
+    parse_tau,
+    parse_value,
+    query_value,
+)
 from app.widgets import ExactSlider, LabelledCheckbox
 from core import Contact
 
@@ -602,15 +609,6 @@ class Explorer:
         self.methods.close()
         if self.motor is not None:
             self.motor.close()
-
-
-def query_value(raw: str | bytes | list) -> str:
-    """One URL query value as text (the last of repeated values, as the other keys)."""
-    if isinstance(raw, list):
-        raw = raw[-1] if raw else ""
-    if isinstance(raw, bytes):
-        raw = raw.decode("utf-8", "replace")
-    return str(raw).strip()
 
 
 def build_explorer(query: dict | None = None) -> Explorer:

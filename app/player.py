@@ -14,8 +14,9 @@ browser does not send 60 changes a second back to the server, which goes on hold
 the values it last sent.  The script remembers those values, and a copy of every source
 it writes frames into (also what the server sends while it plays), and puts them back
 when it stops, so that after a pause the page shows exactly what the server holds, and
-every later change of the server's is drawn (Bokeh sends no change that leaves a value
-as the server holds it: a phase badge paused in the phase the play started in).  The
+every later change of the server's is drawn (Bokeh sends no property set to the value
+it holds, and the spheres scene sends no data its sources hold already: a phase badge
+paused in the phase the play started in is not sent again).  The
 server follows the same clock (progress = start + speed * elapsed / CONTACT_SECONDS)
 for the tau a pause, a speed change or a parameter change lands on.
 """
@@ -33,6 +34,7 @@ from bokeh.plotting import figure as Figure
 from app.formulas import formulas
 from app.phases import style
 from app.scenes import CurveScene, DiscScene, TractionScene
+from app.wire import column
 from core import Contact, Phase
 
 FRAMES_PER_CONTACT = 240  # one contact at speed 1 in CONTACT_SECONDS: 60 frames/s at 4 s
@@ -206,7 +208,8 @@ class Player:
         self.profiles.data = {k: v.ravel() for k, v in self.traction.profiles(c, taus).items()}
         for sprite in self.sprites:
             for name, cols in sprite.drawing(c, taus).items():
-                self.sprite_frames[name].data = {k: flat(v) for k, v in cols.items()}
+                # (K, n) arrays as K * n values, frame after frame
+                self.sprite_frames[name].data = {k: column(v) for k, v in cols.items()}
         line = c.at(taus)
         phases = line.phase
         looks = [style(p) for p in phases]
@@ -231,10 +234,3 @@ class Player:
         self.profiles.data = {}
         for source in self.sprite_frames.values():
             source.data = {}
-
-
-def flat(values: np.ndarray) -> np.ndarray | list:
-    """An array of shape (K, n) as the K * n values of one column, frame after frame
-    (text as a list of str)."""
-    v = np.asarray(values).ravel()
-    return v.tolist() if v.dtype == object else v

@@ -29,7 +29,7 @@ from bokeh.plotting import figure
 
 from app.phases import STICK_COLOR, style
 from app.scenes import FRAME_LEVEL, Scene, _style, png_name
-from app.wire import inline
+from app.wire import column, inline
 from core import Contact
 
 DRIVE = 0.15  # the drawn normal amplitude H, in sphere radii
@@ -137,7 +137,7 @@ class SpheresScene(Scene):
 
     def __init__(self) -> None:
         first = drawing(Contact(0.5, 0.5), np.array([math.pi / 2]))
-        self.sources = {name: ColumnDataSource({k: row(v[0]) for k, v in cols.items()},
+        self.sources = {name: ColumnDataSource({k: column(v[0]) for k, v in cols.items()},
                                                name=name)
                         for name, cols in first.items()}
         self.source = self.sources["spheres_lower"]
@@ -203,7 +203,7 @@ class SpheresScene(Scene):
 
     def update_tau(self, c: Contact, tau: float) -> None:
         for name, cols in drawing(c, np.array([tau])).items():
-            show(self.sources[name], inline({k: row(v[0]) for k, v in cols.items()}))
+            show(self.sources[name], inline({k: column(v[0]) for k, v in cols.items()}))
 
 
 def show(source: ColumnDataSource, data: dict) -> None:
@@ -211,8 +211,3 @@ def show(source: ColumnDataSource, data: dict) -> None:
     if data.keys() != source.data.keys() or not all(
             np.array_equal(np.asarray(source.data[k]), np.asarray(v)) for k, v in data.items()):
         source.data = data
-
-
-def row(values: np.ndarray) -> np.ndarray | list:
-    """One time's row of a column (text as a list of str)."""
-    return values.tolist() if values.dtype == object else np.ascontiguousarray(values)

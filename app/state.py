@@ -207,6 +207,16 @@ class ExplorerState(param.Parameterized):
         return q
 
 
+def query_value(raw: str | bytes | list) -> str:
+    """One URL query value as text: the last of repeated values (as
+    `pn.state.session_args` lists them), bytes decoded, blanks stripped."""
+    if isinstance(raw, list):
+        raw = raw[-1] if raw else ""
+    if isinstance(raw, bytes):
+        raw = raw.decode("utf-8", "replace")
+    return str(raw).strip()
+
+
 def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str]]:
     """Validate URL query values.
 
@@ -222,13 +232,7 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
     """
     values: dict = {}
     messages: list[str] = []
-    flat: dict[str, str] = {}
-    for key, raw in query.items():
-        if isinstance(raw, list):
-            raw = raw[-1] if raw else ""
-        if isinstance(raw, bytes):
-            raw = raw.decode("utf-8", "replace")
-        flat[key] = str(raw).strip()
+    flat = {key: query_value(raw) for key, raw in query.items()}
 
     for key in flat:
         if key not in QUERY_KEYS:

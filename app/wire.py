@@ -49,3 +49,10 @@ def inline(columns: Mapping[str, Any]) -> dict[str, Any]:
         else:
             out[name] = values
     return out
+
+
+def column(values: np.ndarray) -> np.ndarray | list:
+    """An array's values, in order, as one column of a source: numbers as a contiguous
+    1-d array, text (an object array) as a list of str."""
+    v = np.ravel(values)
+    return v.tolist() if v.dtype == object else v

@@ -197,6 +197,28 @@ def test_good_query_sets_the_parameters(browser, url) -> None:
     page.close()
 
 
+def play(page) -> None:
+    """Press Play; wait for the player's frames to arrive."""
+    page.get_by_role("button", name="▶ Play").click()
+    page.wait_for_function("() => (__col('frames', 'tau') || []).length > 0", timeout=10_000)
+
+
+def pause(page) -> None:
+    """Press Pause; wait for the player to stop (its frames emptied)."""
+    page.get_by_role("button", name="‖ Pause").click()
+    page.wait_for_function("() => (__col('frames', 'tau') || []).length === 0",
+                           timeout=10_000)
+
+
+def play_until_the_marker_moves(page) -> None:
+    """Play until the T(tau) marker has moved, then pause."""
+    play(page)
+    x0 = column(page, "force_marker", "x")[0]
+    page.wait_for_function("(v) => __col('force_marker', 'x')[0] !== v", arg=x0,
+                           timeout=10_000)
+    pause(page)
+
+
 def test_animation_advances(browser, url) -> None:
     page, console = open_explorer(browser, url)
     page.get_by_role("button", name="▶ Play").click()
@@ -228,15 +250,7 @@ def test_play_starts_right_after_slider_moves(browser, url) -> None:
             page.keyboard.press("ArrowRight" if (i + round_) % 2 == 0 else "ArrowLeft")
             page.wait_for_timeout(120)
         page.wait_for_timeout(delay_ms)
-        page.get_by_role("button", name="▶ Play").click()
-        page.wait_for_function("() => (__col('frames', 'tau') || []).length > 0",
-                               timeout=10_000)
-        x0 = column(page, "force_marker", "x")[0]
-        page.wait_for_function("(v) => __col('force_marker', 'x')[0] !== v", arg=x0,
-                               timeout=10_000)
-        page.get_by_role("button", name="‖ Pause").click()
-        page.wait_for_function("() => (__col('frames', 'tau') || []).length === 0",
-                               timeout=10_000)
+        play_until_the_marker_moves(page)
     assert errors(console) == []
     page.close()
 
@@ -289,18 +303,14 @@ def test_play_moves_the_tau_box_slider_and_formulas_with_the_plots(browser, url)
                            " catch (e) { return false; } }", timeout=30_000)  # typeset
     assert_one_tau_shown(page.evaluate(JS_SHOWN_TAU), psi, tau0)
     for play_ms in (4600, 900, 2300):
-        page.get_by_role("button", name="▶ Play").click()
-        page.wait_for_function("() => (__col('frames', 'tau') || []).length > 0",
-                               timeout=10_000)
+        play(page)
         seen = set()
         for _ in range(play_ms // 100):
             shown = page.evaluate(JS_SHOWN_TAU)
             assert_one_tau_shown(shown, psi, tau0)
             seen.add(shown["formula"].split(" (")[0])
             page.wait_for_timeout(100)
-        page.get_by_role("button", name="‖ Pause").click()
-        page.wait_for_function("() => (__col('frames', 'tau') || []).length === 0",
-                               timeout=10_000)
+        pause(page)
         settled(page, "force_marker", "x")
         assert_one_tau_shown(page.evaluate(JS_SHOWN_TAU), psi, tau0)
         if play_ms > 4000:  # a whole contact: every phase of psi > 1 went by
@@ -524,13 +534,7 @@ def test_the_presentation_view_fits_one_screen(browser, url, width: int, height:
     if width == 1280:
         ARTIFACTS.mkdir(exist_ok=True)
         page.screenshot(path=str(ARTIFACTS / "presentation-1280x720.png"))
-    page.get_by_role("button", name="▶ Play").click()
-    x0 = column(page, "force_marker", "x")[0]
-    page.wait_for_function("(v) => __col('force_marker', 'x')[0] !== v", arg=x0,
-                           timeout=10_000)
-    page.get_by_role("button", name="‖ Pause").click()
-    page.wait_for_function("() => (__col('frames', 'tau') || []).length === 0",
-                           timeout=10_000)
+    play_until_the_marker_moves(page)
     page.wait_for_function("() => location.search.includes('view=present')", timeout=5000)
     page.get_by_role("button", name="All scenes and controls").click()
     page.wait_for_function("() => !location.search.includes('view=')", timeout=10_000)
