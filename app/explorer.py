@@ -1,27 +1,30 @@
 """The explorer: controls and scenes assembled into one page (`app.layout`).
 
-`Explorer` wires an `ExplorerState` (what the user set) to the scenes (what is shown):
-a parameter change rebuilds the `core.Contact` once and lets every scene refresh its
-curves; a change of tau (the scrubber, or an animation frame) refreshes only what
-depends on tau.  All changes of one step are sent to the browser in one message
-(`panel.io.hold`).  The animation is played by the browser from frames computed here
-(`app.player`), which moves the tau box, the slider and the formulas with the plots;
-the server follows the player's clock.
+`Explorer`, a `param.Parameterized` controller, shows an `ExplorerState` (what the user
+set) in the scenes (what is shown).  One handler, `show_state`, depends on every input of
+the contact and on tau: it compares the state with what is on screen, rebuilds the
+`core.Contact` and refreshes every scene when the contact differs, refreshes only what
+depends on tau when only tau differs, and does nothing when both are shown; a state it
+must correct first (psi and tau0 derived from SI inputs, tau clamped into the contact)
+it corrects and leaves the showing to the call that correction makes.  So no change is
+ever hidden from it and none is shown twice.  All changes of one step are sent to the
+browser in one message (`panel.io.hold`).  The animation is played by the browser from
+frames computed here (`app.player`), which moves the tau box, the slider and the
+formulas with the plots; the server follows the player's clock.
 """
 
 from __future__ import annotations
 
-import contextlib
 import html
 import io
 import math
 import time
-from collections.abc import Iterator
 from functools import partial
 from urllib.parse import urlencode
 
 import numpy as np
 import panel as pn
+import param
 from panel.io import hold
 
 from app import export, layout, presentation
@@ -47,6 +50,7 @@ from app.scenes import (
 from app.spheres import SpheresScene
 from app.state import (
     PRESETS,
+    SI_KEYS,
     ExplorerState,
     parse_query,
     parse_tau,
@@ -59,31 +63,52 @@ from core import Contact
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
 URL_DELAY_S = 0.4  # the URL follows the parameters this long after the last change (s)
 
+#: the state's parameters that define the contact (`ExplorerState.contact`)
+CONTACT_INPUTS = ("psi", "tau0", "mu", "nu", "physical", *SI_KEYS)
 
 
+def apply_query(state: ExplorerState, query: dict) -> list[str]:
+    """Apply a URL query's validated values to `state`; returns the messages to show.
+    A combination core rejects falls back to the defaults of the values it gave."""
+    values, messages = parse_query(query)
+    defaults = {k: state.param[k].default for k in values}
+    state.param.update(**values)
+    try:
+        state.contact()
+    except ValueError as err:
+        messages.append(f"these parameters are rejected ({err}); defaults used")
+        state.param.update(**defaults)
+    return messages
 
-class Explorer:
+
+class Explorer(param.Parameterized):
     """One user's session: state, widgets, scenes and their wiring."""
+
+    state = param.ClassSelector(class_=ExplorerState, constant=True,
+                                doc="what the user set; everything on the page shows it")
 
     def __init__(self, state: ExplorerState | None = None,
                  query: dict | None = None) -> None:
-        self.state = state or ExplorerState()
-        self.messages: list[str] = []
+        state = state or ExplorerState()
         query = dict(query or {})
         view = query_value(query.pop("view", ""))
+        motor_query = {k: v for k, v in query.items() if k.startswith(MOTOR_PREFIX)}
+        rest = {k: v for k, v in query.items() if k not in motor_query}
+        messages = apply_query(state, rest) if rest else []
+        super().__init__(state=state)  # (the handlers below watch the state from here)
+        self.messages = messages
         #: the Motor scene's part of the URL (applied when the scene is built)
-        self._motor_query = {k: v for k, v in query.items() if k.startswith(MOTOR_PREFIX)}
-        if query:
-            values, self.messages = parse_query(
-                {k: v for k, v in query.items() if k not in self._motor_query})
-            self._apply_query(values)
+        self._motor_query = motor_query
         #: the page shown: '' (everything) or 'present' (one screen, `app.presentation`)
         self.view_name = view if view == presentation.VIEW else ""
         if view not in ("", presentation.VIEW):
             self.messages.append(f"view = {view!r} is unknown (known: {presentation.VIEW});"
                                  " the full page is shown")
         self.contact: Contact = self.state.contact()
-        self._syncing = False
+        #: the time the scenes on the server show (the player's frames aside)
+        self._shown_tau = self.state.tau
+        #: the contact's inputs as last seen: a change of them retires the messages shown
+        self._inputs = self._contact_inputs()
         self._shown_phase = -1
         self._url_pending = False
         self._url_due = 0.0
@@ -109,13 +134,6 @@ class Explorer:
         self._play_start = (0.0, 0.0, 1.0)
 
         self._build_widgets()
-        self.state.param.watch(self._on_params, ["psi", "tau0", "mu", "nu", "physical", "R",
-                                                 "G", "H", "u0", "h", "omega"])
-        self.state.param.watch(self._on_preset, ["preset"])
-        self.state.param.watch(self._on_tau, ["tau"])
-        self.state.param.watch(self._on_log, ["log_psi"])
-        self.state.param.watch(self._on_playing, ["playing"])
-        self.state.param.watch(self._on_speed, ["speed"])
         self.impulse.set_log(self.state.log_psi)
         #: the curve scenes share one card, one tab each; only the open tab is drawn and
         #: computed (the others catch up when their tab is opened) and a scene's figure is
@@ -143,15 +161,45 @@ class Explorer:
 
     # ------------------------------------------------------------------ state
 
-    def _apply_query(self, values: dict) -> None:
-        """Apply validated query values; a combination core rejects falls back to defaults."""
-        defaults = {k: self.state.param[k].default for k in values}
-        self.state.param.update(**values)
+    def _contact_inputs(self) -> tuple:
+        return tuple(getattr(self.state, k) for k in CONTACT_INPUTS)
+
+    @param.depends(*(f"state.{k}" for k in (*CONTACT_INPUTS, "tau")), watch=True)
+    def show_state(self) -> None:
+        """Show the state: refresh every scene if its contact is not the one shown, else
+        what depends on tau if its tau is not the one shown, else nothing.
+
+        A state that needs correcting first (with SI inputs psi and tau0 follow from
+        them; tau is kept inside the contact) is corrected, and the change that makes
+        calls this again to show it.  SI inputs that core refuses together are not
+        applied (the physical inputs' card says why, under its boxes)."""
+        s = self.state
+        inputs = self._contact_inputs()
+        if inputs != self._inputs:  # the user changed the contact: past messages are done
+            self._inputs = inputs
+            self.show_messages([])
+        self.psi_slider.disabled = self.tau0_slider.disabled = s.physical
         try:
-            self.state.contact()
-        except ValueError as err:
-            self.messages.append(f"these parameters are rejected ({err}); defaults used")
-            self.state.param.update(**defaults)
+            c = s.contact()
+        except ValueError:
+            if s.physical:
+                return
+            raise
+        fixes = {"psi": c.psi, "tau0": c.tau0} if s.physical else {}
+        fixes["tau"] = min(max(s.tau, c.tau0), c.tau_end)
+        fixes = {k: v for k, v in fixes.items() if getattr(s, k) != v}
+        if fixes:
+            s.param.update(**fixes)  # (which calls this again)
+            return
+        if (c, c.scales) != (self.contact, self.contact.scales):
+            self.contact = c
+            self.refresh()
+        elif s.tau != self._shown_tau:
+            if s.playing:  # the scrubber moved while playing: play on from there
+                self._start_player(self._progress_of(s.tau))
+            else:
+                self.update_tau()
+            self._write_url()
 
     def shown(self, scene: Scene) -> bool:
         """Whether `scene` is on the page now (the curve scenes: their tab is open)."""
@@ -182,7 +230,7 @@ class Explorer:
         """Recompute every scene shown for the current state (after a parameter change);
         the others are marked to catch up when shown."""
         c = self.contact
-        tau = self.state.tau
+        tau = self._shown_tau = self.state.tau
         with hold():
             for scene in self.scenes:
                 if self.shown(scene):
@@ -196,30 +244,9 @@ class Explorer:
             self._show_formulas(c, tau)
             self.traction.caption.text = self._now_text(c, tau)
             self.methods.update_contact(c)
-            if self.state.playing:  # the player goes on with the new contact's frames
-                self._start_player(self._progress_of(tau))
+            if self.state.playing:  # the player goes on, at its place in the contact
+                self._start_player(self._clock_progress())
         self._write_url()
-
-    def _on_params(self, *events) -> None:
-        if self._syncing:
-            return
-        self._follow_clock()
-        try:
-            c = self.state.contact()
-        except ValueError as err:
-            self.show_messages([f"not applied: {err}"])
-            return
-        self.show_messages([])
-        self.contact = c
-        updates = {}
-        if self.state.physical:
-            updates.update(psi=c.psi, tau0=c.tau0)
-        tau = min(max(self.state.tau, c.tau0), c.tau_end)
-        if tau != self.state.tau:
-            updates["tau"] = tau
-        self._set_silently(**updates)
-        self.psi_slider.disabled = self.tau0_slider.disabled = self.state.physical
-        self.refresh()
 
     # ------------------------------------------------------------------ motor
 
@@ -253,10 +280,11 @@ class Explorer:
         m = self.motor.state
         self.state.param.update(physical=False, psi=psi, tau0=tau0, mu=m.mu, nu=m.nu)
 
-    def _on_preset(self, event) -> None:
+    @param.depends("state.preset", watch=True)
+    def _on_preset(self) -> None:
         """The selector, its note and the T(tau) family follow the state's preset ('' once
         left)."""
-        self.preset_select.value = event.new
+        self.preset_select.value = self.state.preset
         self._show_note()
         with hold():
             self._show_family()
@@ -274,32 +302,10 @@ class Explorer:
         family = preset.family if preset else ()
         self.force.set_family([Contact(p, c.tau0, mu=c.mu, nu=c.nu) for p in family])
 
-    @contextlib.contextmanager
-    def _silently(self) -> Iterator[None]:
-        """Changes made inside do not trigger the per-change recomputation."""
-        self._syncing = True
-        try:
-            yield
-        finally:
-            self._syncing = False
-
-    def _set_silently(self, **values) -> None:
-        """Update state without triggering the per-change recomputation."""
-        with self._silently():
-            self.state.param.update(**values)
-
-    def _on_tau(self, *events) -> None:
-        if self._syncing:
-            return
-        if self.state.playing:  # the scrubber moved while playing: play on from there
-            self._start_player(self._progress_of(self.state.tau))
-            return
-        self.update_tau()
-        self._write_url()
-
     def update_tau(self) -> None:
         """Refresh what depends on tau only (a scrub, a step, the frame a pause lands on)."""
-        c, tau = self.contact, self.state.tau
+        c = self.contact
+        tau = self._shown_tau = self.state.tau
         with hold():
             for scene in self.scenes:
                 if scene in self._stale:
@@ -311,11 +317,7 @@ class Explorer:
             self.methods.update_tau(c, tau)
             self._show_formulas(c, tau)
             self.traction.caption.text = self._now_text(c, tau)
-            self._move_scrubber(tau)
-
-    def _move_scrubber(self, tau: float) -> None:
-        with self._silently():
-            self.tau_slider.value = tau
+            self.tau_slider.value = tau  # (its watcher finds the state's tau unchanged)
 
     def _show_formulas(self, c: Contact, tau: float) -> None:
         phase = int(c.phase(tau))  # a 0-d array for one tau
@@ -323,8 +325,9 @@ class Explorer:
             self._shown_phase = phase
             self.formulas.object = formulas(phase)
 
-    def _on_log(self, event) -> None:
-        self.impulse.set_log(event.new)
+    @param.depends("state.log_psi", watch=True)
+    def _on_log(self) -> None:
+        self.impulse.set_log(self.state.log_psi)
         self._stale.add(self.impulse)
         if self.shown(self.impulse):
             with hold():
@@ -356,12 +359,16 @@ class Explorer:
         c = self.contact
         return min(max((tau - c.tau0) / (c.tau_end - c.tau0), 0.0), 1.0) % 1.0
 
-    def clock_tau(self, now: float | None = None) -> float:
-        """The tau of the frame the browser's player shows at time `now` (monotonic s)."""
+    def _clock_progress(self, now: float | None = None) -> float:
+        """Where the browser's player is in the contact at time `now` (monotonic s), in
+        [0, 1)."""
         progress, started, speed = self._play_start
         now = time.monotonic() if now is None else now
-        progress += speed * (now - started) / CONTACT_SECONDS
-        return float(frame_taus(self.contact)[frame_index(progress)])
+        return (progress + speed * (now - started) / CONTACT_SECONDS) % 1.0
+
+    def clock_tau(self, now: float | None = None) -> float:
+        """The tau of the frame the browser's player shows at time `now` (monotonic s)."""
+        return float(frame_taus(self.contact)[frame_index(self._clock_progress(now))])
 
     def _start_player(self, progress: float) -> None:
         """(Re)start the browser's player at `progress` with the current contact and speed.
@@ -375,28 +382,25 @@ class Explorer:
         with hold():
             self.player.play(c, progress, self.state.speed, CONTACT_SECONDS)
 
-    def _follow_clock(self) -> None:
-        """While playing, set the state's tau to the frame the browser shows (the state
-        holds the tau a play started from until then)."""
-        if self.state.playing:
-            self._set_silently(tau=self.clock_tau())
-
-    def _on_speed(self, event) -> None:
+    @param.depends("state.speed", watch=True)
+    def _on_speed(self) -> None:
         if self.state.playing:  # keep the current frame, change the pace
-            self._follow_clock()
-            self._start_player(self._progress_of(self.state.tau))
+            self._start_player(self._clock_progress())
 
-    def _on_playing(self, event) -> None:
-        self.play_button.label = "‖ Pause" if event.new else "▶ Play"
-        self.play_button.color = "warning" if event.new else "success"
-        if event.new:
+    @param.depends("state.playing", watch=True)
+    def _on_playing(self) -> None:
+        """Start the browser's player at the state's tau; a pause puts the state's tau
+        (which holds the tau the play last started from) on the player's frame."""
+        playing = self.state.playing
+        self.play_button.label = "‖ Pause" if playing else "▶ Play"
+        self.play_button.color = "warning" if playing else "success"
+        if playing:
             self._start_player(self._progress_of(self.state.tau))
             return
-        self._set_silently(tau=self.clock_tau())
         with hold():  # one message: the player stops and the plots settle on its frame
             self.player.stop()
-            self.update_tau()
-        self._write_url()
+            self.state.tau = self.clock_tau()
+            self.show_state()  # (if the frame is the tau the play started from)
 
     # ------------------------------------------------------------------- view
 
@@ -439,7 +443,7 @@ class Explorer:
         self.physical_box = self.physical_inputs.physical_box
         self.material_select = self.physical_inputs.material_select
         self.physical_card = self.physical_inputs.card
-        # a link with physical inputs: psi and tau0 follow from them (as in `_on_params`)
+        # a link with physical inputs: psi and tau0 follow from them (as in `show_state`)
         self.psi_slider.disabled = self.tau0_slider.disabled = s.physical
 
         self.message = pn.pane.HTML("", visible=False, sizing_mode="stretch_width",

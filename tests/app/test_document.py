@@ -495,18 +495,21 @@ def test_step_button_and_play_toggle(ex: Explorer, monkeypatch) -> None:
     assert progress == 0.0
     now = [started]
     monkeypatch.setattr(app.explorer.time, "monotonic", lambda: now[0])
-    # the browser's player shows the frames; the server follows its clock, and a
-    # parameter change made while playing starts from the frame shown
+    # the browser's player shows the frames; the server follows its clock (the state
+    # keeps the tau the play started from), and a change made while playing goes on
+    # from the player's place in the contact
     now[0] += 1.53  # (off the frame boundaries: 1.53 s = 91.8 frames)
-    expected = frame_taus(c)[frame_index(ex.state.speed * 1.53 / CONTACT_SECONDS)]
+    progress = ex.state.speed * 1.53 / CONTACT_SECONDS
+    expected = frame_taus(c)[frame_index(progress)]
     assert ex.clock_tau() == expected and ex.state.tau == c.tau0
-    ex.speed_slider.value = 2.0  # the pace changes, the frame stays
-    assert ex.state.tau == expected and ex._play_start == (ex._progress_of(expected), now[0], 2.0)
+    ex.speed_slider.value = 2.0  # the pace changes, the place stays
+    assert ex._play_start == (pytest.approx(progress, abs=1e-9), now[0], 2.0)
+    assert ex.clock_tau() == expected and ex.state.tau == c.tau0
     ex.speed_slider.value = 1.0
     now[0] += 0.23
     ex.play_button.clicks += 1  # pause: the plots settle on the frame being shown
     assert not ex.state.playing and "Play" in ex.play_button.label
-    progress = ex._progress_of(expected) + 0.23 / CONTACT_SECONDS  # at speed 1 again
+    progress += 0.23 / CONTACT_SECONDS  # at speed 1 again
     assert ex.state.tau == frame_taus(c)[frame_index(progress)]
     assert ex.tau_slider.value == ex.state.tau
     assert len(ex.player.frames.data) == 0
@@ -581,8 +584,9 @@ def test_invalid_physical_inputs_show_a_message(ex: Explorer) -> None:
     ex.physical_box.value = True
     psi = ex.state.psi
     ex.state.h = 5 * ex.state.H  # h must be < H
-    assert ex.message.visible and "not applied" in ex.message.object
-    assert ex.state.psi == psi
+    pane = ex.physical_inputs.refusal  # said once, under the boxes, not above the plots
+    assert pane.visible and "(-H, H)" in pane.object and not ex.message.visible
+    assert ex.state.psi == psi and ex.contact == contact_of(ex)
 
 
 # ----------------------------------------------------------------- methods
