@@ -580,6 +580,43 @@ def test_physical_inputs_give_si_scales(ex: Explorer) -> None:
     assert " N\na = " in ex.traction.caption.text
 
 
+def test_each_change_is_shown_once_corrections_included(ex: Explorer, monkeypatch) -> None:
+    """`show_state` corrects the state (tau clamped, psi and tau0 from SI inputs) and
+    shows the result once: one refresh per contact change, one tau update per tau
+    change, nothing for a value already shown."""
+    calls = {"refresh": 0, "update_tau": 0}
+    for name in calls:
+        def counted(method=getattr(ex, name), name=name):
+            calls[name] += 1
+            method()
+        monkeypatch.setattr(ex, name, counted)
+
+    def shown(refresh: int, update_tau: int) -> None:
+        assert calls == {"refresh": refresh, "update_tau": update_tau}
+        calls.update(refresh=0, update_tau=0)
+        assert_sources_match_core(ex)
+        assert ex.tau_slider.value == ex.state.tau
+
+    ex.state.tau = 2.5
+    shown(0, 1)
+    ex.state.tau = 2.5  # already shown
+    shown(0, 0)
+    ex.tau0_slider.value = 1.0  # tau = 2.5 is past the end of contact pi - 1
+    assert ex.state.tau == math.pi - 1.0
+    shown(1, 0)
+    ex.physical_box.value = True  # psi and tau0 follow from the SI inputs
+    c = Contact.from_physical(**{k: getattr(ex.state, k) for k in (
+        "R", "G", "nu", "mu", "H", "u0", "h", "omega")})
+    assert (ex.state.psi, ex.state.tau0, ex.state.tau) == (c.psi, c.tau0, math.pi - 1.0)
+    shown(1, 0)
+    ex.state.R *= 2  # the same psi and tau0, other SI scales (a*, T0)
+    assert ex.contact.scales.a_star == pytest.approx(c.scales.a_star * math.sqrt(2))
+    shown(1, 0)
+    ex.state.H = 4e-6  # psi and tau0 change with H; tau clamps into the new contact
+    assert ex.state.tau0 == pytest.approx(math.asin(0.25)) and ex.state.tau == math.pi - 1.0
+    shown(1, 0)
+
+
 def test_invalid_physical_inputs_show_a_message(ex: Explorer) -> None:
     ex.physical_box.value = True
     psi = ex.state.psi
