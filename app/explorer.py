@@ -567,7 +567,7 @@ class Explorer(param.Parameterized):
         loc, doc = pn.state.location, pn.state.curdoc
         if loc is None or doc is None:
             return
-        if doc.session_context is None:  # no server loop (tests): write at once
+        if doc.session_context is None:  # no server session (a notebook): no loop to wait on
             self._put_url(loc)
             return
         self._url_due = time.monotonic() + URL_DELAY_S

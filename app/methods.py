@@ -183,7 +183,7 @@ class MethodsScene:
 
     def run(self) -> None:
         """Solve the chosen methods for the current contact, in a worker thread when
-        served (synchronously otherwise, e.g. in tests)."""
+        served (synchronously without a server session, e.g. in a notebook)."""
         if not self.methods or self._contact is None:
             return
         with self._lock:
