@@ -585,11 +585,17 @@ def test_each_change_is_shown_once_corrections_included(ex: Explorer, monkeypatc
     shows the result once: one refresh per contact change, one tau update per tau
     change, nothing for a value already shown."""
     calls = {"refresh": 0, "update_tau": 0}
-    for name in calls:
-        def counted(method=getattr(ex, name), name=name):
+
+    def counting(name: str):
+        method = getattr(ex, name)
+
+        def counted() -> None:
             calls[name] += 1
             method()
-        monkeypatch.setattr(ex, name, counted)
+        return counted
+
+    for name in calls:
+        monkeypatch.setattr(ex, name, counting(name))
 
     def shown(refresh: int, update_tau: int) -> None:
         assert calls == {"refresh": refresh, "update_tau": update_tau}
