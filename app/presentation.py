@@ -1,11 +1,19 @@
 """The presentation view (`/main?view=present`): one screen for a class.
 
-At 1280 x 720 and larger, without scrolling: a row of the controls a teacher uses in
-front of a class (preset, Play, Step, speed, the time), the two spheres with their
-phase badge, the traction profile with the contact disc beside it, and T(tau).  The
-other scenes are a click away on the full page (the link in the header keeps the
-parameters).  The same scenes and controls as the full page (`app.layout.page`), sized
-for the screen: this module only arranges them.
+In the header, the link to the full page (it keeps the parameters); below it a row of
+the controls a teacher uses in front of a class (preset, Play, Step, Reset, speed, the
+time); then, without scrolling, the two spheres with their phase badge, the traction
+profile with the contact disc beside it, and T(tau).  The same scenes and controls as
+the full page (`app.layout.page`): this module only arranges and sizes them.
+
+The page is one screen high (`100vh`) and the scenes take the height the header and
+the controls leave: the plots grow with the screen (at 1280 x 720 the spheres are about
+390 x 580 px, at 1920 x 1080 650 x 940 px).  The sizes are CSS, worked out by the
+browser from the scenes' box (container query units: `100cqh` is its height, `100cqw`
+its width), so the plots have them at the first paint and follow a resized window
+without the server.  The spheres and the disc are drawn at equal scales on both axes:
+their boxes are sized so that their frames (the box less the title, toolbar and axes)
+have the aspect of their ranges.
 """
 
 from __future__ import annotations
@@ -22,11 +30,21 @@ if TYPE_CHECKING:
 #: The name of the view in the URL (`view=present`).
 VIEW = "present"
 
-#: Plot sizes (px) that fit 1280 x 720 below the header and the controls.
-SPHERES_SIZE = (330, 500)  # width, height: the drawing's equal scales (3.2 x 4.55 radii)
-TRACTION_HEIGHT = 270
-DISC_SIZE = 250
-FORCE_HEIGHT = 235
+#: The spheres' plot outside its frame (px, with the type of `app.scenes._style`):
+#: (across, down): its borders across; its title, toolbar and borders down.
+SPHERES_RIM = (10, 37)
+#: The disc's plot outside its frame (px): (across, down): the y axis with its label and
+#: the borders across; the title, the x axis with its label and the borders down.
+DISC_RIM = (105, 87)
+#: The largest shares of the scenes' width the spheres and the disc take (they take less
+#: but on a narrow screen: their height sets their width).
+SPHERES_MAX_WIDTH = 0.34
+DISC_MAX_WIDTH = 0.3
+#: The share of the scenes' height of the traction profile and the disc (T(tau) takes
+#: the rest).
+TOP_SHARE = 0.53
+#: Space between the plots (px).
+GAP = 8
 BADGE_FONT = "26pt"
 
 #: The full page: this page's link without `view=present` (the parameters kept).
@@ -37,36 +55,67 @@ window.location.search = q.toString();
 """
 
 
+def equal_scales_box(aspect: float, rim: tuple[int, int], height: str,
+                     max_width: str) -> dict[str, str]:
+    """CSS width and height of a plot whose frame (the box less its `rim` in px, across
+    and down) has width / height = `aspect`: as high as `height` allows, narrower than
+    `max_width` (CSS lengths)."""
+    across, down = rim
+    h = f"min({height}, calc(({max_width} - {across}px) / {aspect!r} + {down}px))"
+    return {"height": h, "width": f"calc(({h} - {down}px) * {aspect!r} + {across}px)",
+            "flex": "0 0 auto", "min-width": "0", "max-width": "none", "max-height": "none"}
+
+
+def aspect(fig) -> float:
+    """Width over height of `fig`'s ranges (its data at equal scales)."""
+    return (fig.x_range.end - fig.x_range.start) / (fig.y_range.end - fig.y_range.start)
+
+
 def presentation(ex: Explorer) -> pn.Column:
     """The one-screen page of `ex`'s scenes and controls."""
     spheres = ex.spheres.figure
-    spheres.width, spheres.height = SPHERES_SIZE
-    spheres.sizing_mode = "fixed"
     ex.spheres.badge.glyph.text_font_size = BADGE_FONT
     traction, disc, force = ex.traction.figure, ex.disc.figure, ex.force.figure
-    traction.height = TRACTION_HEIGHT
-    disc.width = disc.height = DISC_SIZE
-    force.height = FORCE_HEIGHT
-    header = pn.pane.HTML(f"<h1>{layout.TITLE}</h1>", styles=layout.HEADER_STYLE,
-                          sizing_mode="stretch_width", margin=0,
-                          stylesheets=[layout.HEADING_CSS])
-    full = pn.widgets.Button(label="All scenes and controls", width=220, align="end")
+    for fig in (spheres, traction, disc, force):
+        fig.sizing_mode, fig.margin = "stretch_both", 0
+        fig.min_width = fig.max_width = None
+    # the scenes' box is the size container: 100cqh is its height, 100cqw its width
+    spheres.styles = equal_scales_box(aspect(spheres), SPHERES_RIM, "100cqh",
+                                      f"{100 * SPHERES_MAX_WIDTH}cqw")
+    disc.styles = equal_scales_box(aspect(disc), DISC_RIM, f"{100 * TOP_SHARE}cqh",
+                                   f"{100 * DISC_MAX_WIDTH}cqw")
+    traction.styles = {"flex": "1 1 0", "min-width": "0", "height": "100%"}
+    force.styles = {"flex": "1 1 0", "min-height": "0", "width": "100%"}
+    force.margin = (GAP, 0, 0, 0)
+    full = pn.widgets.Button(label="All scenes and controls", width=220, align="center")
     full.js_on_click(code=FULL_PAGE_JS)  # the same link without view=present
+    header = pn.Row(
+        pn.pane.HTML(f"<h1>{layout.TITLE}</h1>", styles=layout.HEADER_STYLE,
+                     margin=0, stylesheets=[layout.HEADING_CSS],
+                     sizing_mode="stretch_width"),
+        full, styles={"background": layout.HEADER_STYLE["background"]},
+        sizing_mode="stretch_width")
+    for widget in (ex.preset_select, ex.speed_slider):  # as wide as their columns
+        widget.param.update(width=None, sizing_mode="stretch_width")
     controls = pn.FlexBox(
         pn.Column(ex.preset_select, styles={"flex": "1 1 260px"}),
         pn.Row(ex.play_button, ex.step_button, ex.reset_button, align="end"),
         pn.Column(ex.speed_slider, styles={"flex": "0 1 200px"}),
         pn.Column(ex.tau_slider, styles={"flex": "2 1 320px"}),
-        full,
         align_items="flex-end", sizing_mode="stretch_width")
-    scenes = pn.FlexBox(
-        pn.pane.Bokeh(spheres, margin=(0, 8)),
+    scenes = pn.Row(
+        pn.pane.Bokeh(spheres),
         pn.Column(
-            pn.Row(pn.pane.Bokeh(traction, sizing_mode="stretch_width"),
-                   pn.pane.Bokeh(disc), sizing_mode="stretch_width"),
-            pn.pane.Bokeh(force, sizing_mode="stretch_width"),
-            styles={"flex": "1 1 600px", "min-width": "0"}),
-        flex_wrap="wrap", align_items="flex-start", sizing_mode="stretch_width")
+            pn.Row(pn.pane.Bokeh(traction), pn.pane.Bokeh(disc), sizing_mode="stretch_both",
+                   styles={"height": f"{100 * TOP_SHARE}cqh", "flex": "0 0 auto",
+                           "gap": f"{GAP}px"}),
+            pn.pane.Bokeh(force),
+            sizing_mode="stretch_both", styles={"min-width": "0"}),
+        sizing_mode="stretch_both",
+        styles={"flex": "1 1 0", "min-height": "0", "container-type": "size",
+                "gap": f"{GAP}px"})
     if layout.CSS not in pn.config.raw_css:  # once per process
         pn.config.raw_css.append(layout.CSS)
-    return pn.Column(header, controls, ex.message, scenes, sizing_mode="stretch_width")
+    # one screen high: the scenes take what the header and the controls leave
+    return pn.Column(header, controls, ex.message, scenes, sizing_mode="stretch_both",
+                     styles={"height": "100vh"})

@@ -500,40 +500,90 @@ def test_the_papers_figures_in_full_are_drawn(browser, url) -> None:
     page.close()
 
 
-#: The page boxes of the plots with these titles, and the page's scroll extent.
+#: The plots of the presentation view (their titles).
+PRESENTED = ["Two spheres in section", "Traction profile", "Contact disc (top view)",
+             "Tangential force T / T₀"]
+
+#: The page boxes of the plots with these titles, their frames (the drawing's area:
+#: the figure's inner_width and inner_height), the width / height of their ranges, and
+#: the page's scroll extent.
 JS_PLOT_BOXES = """(titles) => {
-  const boxes = {};
+  const boxes = {}, frames = {}, ranges = {};
   for (const v of __views((v) => v.model != null && v.model.type === "Figure"
       && v.model.title != null && titles.includes(v.model.title.text))) {
-    const r = v.el.getBoundingClientRect();
-    boxes[v.model.title.text] = [r.left, r.top, r.right, r.bottom];
+    const r = v.el.getBoundingClientRect(), m = v.model, t = m.title.text;
+    boxes[t] = [r.left, r.top, r.right, r.bottom];
+    frames[t] = [m.inner_width, m.inner_height];
+    ranges[t] = (m.x_range.end - m.x_range.start) / (m.y_range.end - m.y_range.start);
   }
   const s = document.scrollingElement;
-  return {boxes, scroll: [s.scrollWidth, s.scrollHeight], view: [innerWidth, innerHeight]};
+  return {boxes, frames, ranges, scroll: [s.scrollWidth, s.scrollHeight],
+          view: [innerWidth, innerHeight]};
 }"""
 
 
-@pytest.mark.parametrize(("width", "height"), [(1280, 720), (1920, 1080)])
+def presented(page, width: int, height: int) -> dict:
+    """The presentation's plots as drawn in a `width` x `height` window (JS_PLOT_BOXES),
+    once the layout has settled, checked to fit it: nothing to scroll, every plot inside
+    the window, none over another, the spheres and the disc at equal scales on both axes
+    (their frames have the aspect of their ranges)."""
+    page.wait_for_function(f"() => Object.keys(({JS_PLOT_BOXES})({PRESENTED!r}).boxes)"
+                           ".length === 4", timeout=20_000)
+    last = page.evaluate(f"({JS_PLOT_BOXES})", PRESENTED)
+    for _ in range(40):  # until settled: the frames follow the boxes a paint later
+        page.wait_for_timeout(500)
+        shown, last = last, page.evaluate(f"({JS_PLOT_BOXES})", PRESENTED)
+        if shown == last:
+            break
+    assert shown == last, (shown, last)
+    assert shown["view"] == [width, height]
+    assert shown["scroll"][0] <= width and shown["scroll"][1] <= height, shown
+    boxes = shown["boxes"]
+    for title, (left, top, right, bottom) in boxes.items():
+        assert -0.5 <= left < right <= width + 0.5, (title, shown)
+        assert -0.5 <= top < bottom <= height + 0.5, (title, shown)
+        assert right - left > 200 and bottom - top > 200, (title, shown)
+    for i, a in enumerate(PRESENTED):
+        for b in PRESENTED[i + 1:]:
+            (l1, t1, r1, b1), (l2, t2, r2, b2) = boxes[a], boxes[b]
+            overlap = min(r1, r2) - max(l1, l2), min(b1, b2) - max(t1, t2)
+            assert min(overlap) <= 0.5, (a, b, shown)
+    for title in ("Two spheres in section", "Contact disc (top view)"):
+        w, h = shown["frames"][title]
+        assert w / h == pytest.approx(shown["ranges"][title], rel=0.015), (title, shown)
+    return shown
+
+
+def areas(shown: dict) -> dict[str, tuple[float, float]]:
+    """Each plot's area (px²) and its frame's area."""
+    return {t: ((r - left) * (b - top), shown["frames"][t][0] * shown["frames"][t][1])
+            for t, (left, top, r, b) in shown["boxes"].items()}
+
+
+@pytest.mark.parametrize(("width", "height"), [(1280, 720), (1920, 1080), (2560, 1440)])
 def test_the_presentation_view_fits_one_screen(browser, url, width: int, height: int) -> None:
     """view=present: the spheres with their phase badge, the traction profile, the disc
-    and T(tau) are all on the screen, nothing to scroll; Play animates them; the button
-    leads to the full page with the same parameters."""
+    and T(tau) are all on the screen, nothing to scroll, nothing overflowing its box; on a
+    larger screen they are larger (the same page, the window resized to 1280 x 720, shows
+    them smaller and still fits); Play animates them; the button leads to the full page
+    with the same parameters."""
     page, console = open_explorer(browser, url + "?view=present&psi=3.5", width=width,
                                   height=height)
-    titles = ["Two spheres in section", "Traction profile", "Contact disc (top view)",
-              "Tangential force T / T₀"]
-    page.wait_for_function(f"() => Object.keys(({JS_PLOT_BOXES})({titles!r}).boxes).length"
-                           " === 4", timeout=20_000)
-    page.wait_for_timeout(500)
-    shown = page.evaluate(f"({JS_PLOT_BOXES})", titles)
-    assert shown["scroll"][0] <= width and shown["scroll"][1] <= height, shown
-    for title, (left, top, right, bottom) in shown["boxes"].items():
-        assert 0 <= left < right <= width and 0 <= top < bottom <= height, (title, shown)
-        assert right - left > 200 and bottom - top > 200, (title, shown)
+    shown = presented(page, width, height)
+    page.wait_for_timeout(1000)  # the controls' text laid out
+    assert page.evaluate(JS_OVERFLOWS) == []
     assert column(page, "spheres_badge", "text") == [phase_of(3.5, math.pi / 6, 17 * math.pi / 24)]
-    if width == 1280:
+    if width in (1280, 1920):
         ARTIFACTS.mkdir(exist_ok=True)
-        page.screenshot(path=str(ARTIFACTS / "presentation-1280x720.png"))
+        page.screenshot(path=str(ARTIFACTS / f"presentation-{width}x{height}.png"))
+    if width > 1280:
+        page.set_viewport_size({"width": 1280, "height": 720})
+        small = presented(page, 1280, 720)
+        assert page.evaluate(JS_OVERFLOWS) == []
+        large = areas(shown)
+        for title, (box, frame) in areas(small).items():
+            assert large[title][0] >= 1.3 * box and large[title][1] >= 1.3 * frame, (
+                title, shown, small)
     play_until_the_marker_moves(page)
     page.wait_for_function("() => location.search.includes('view=present')", timeout=5000)
     page.get_by_role("button", name="All scenes and controls").click()
