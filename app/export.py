@@ -1,13 +1,18 @@
 """CSV exports of what the explorer shows, each file readable on its own.
 
 A file opens with a block of comment lines ('#'): what it holds and its source (Zharii
-1996, with the equation of each column), the app's version, the contact's parameters
-(psi, tau0, mu, nu, written with `repr`: they read back as the very floats the explorer
-used), the SI inputs when the contact was defined by them, and, for the traction profile,
-the time tau it is drawn at.  Parameters are written `# name (unit) = value`.  Then one
-line of column names, each a quantity with its unit (the dimensionless ones as the
-paper's ratios, T/T0, a/a*; SI ones as T (N), a (m)), and the rows: 10 significant
-digits, a negative zero written 0.  `pandas.read_csv(f, comment="#")` reads it as it is.
+1996, with the equation of each column), the app's version, the parameters (for the
+explorer's files the contact's psi, tau0, mu, nu, written with `repr`: they read back as
+the very floats the explorer used), the SI inputs when the contact was defined by them,
+and, for the traction profile, the time tau it is drawn at.  Parameters are written
+`# name (unit) = value`.  Then one line of column names, each a quantity with its unit
+(the dimensionless ones as the paper's ratios, T/T0, a/a*; SI ones as T (N), a (m)), and
+the rows: 10 significant digits, a negative zero written 0.
+`pandas.read_csv(f, comment="#")` reads it as it is.
+
+The Motor scene's files (`app.motor`) are written by the same functions: `comments` for
+the header block (the motor's inputs in SI), `csv_text` for the columns, `named` for the
+file's name.
 """
 
 from __future__ import annotations
@@ -62,6 +67,39 @@ COLUMNS: dict[str, str] = {
     "T_imp/(mu P_imp)": "tangential impulse of one contact over mu times its normal"
                         " impulse, at the contact's tau0 (Zharii 1996, eq 41; T_imp eq 40,"
                         " P_imp eq 10)",
+    # the Motor scene (docs/physics.md, section 10; x along the rod, x = 0 its centre)
+    "x0 (m)": "contact point of the rotor on the rod (docs/physics.md 10.1)",
+    "u0 (m)": "tangential drive amplitude at x0, signed: -A sin(pi x0 / (2 L))"
+              " (Zharii 1996, eq 1; docs/physics.md 10.1)",
+    "H (m)": "normal drive amplitude at x0: nu_rod pi delta A cos(pi x0 / (2 L)) / (4 L)"
+             " (Zharii 1996, eq 2; docs/physics.md 10.1)",
+    "Phi": "load factor 9 pi (1 - nu) N / (4 G R^(1/2) H^(3/2)), the F(tau0) the preload"
+           " requires (Zharii 1996, eq 10); 8 or more: the contact never opens"
+           " (docs/physics.md 10.2)",
+    "opens": "1 where the contact opens once per period (Phi < 8), 0 where it never opens"
+             " and the model does not apply (tau0 and the thrust are nan there)",
+    "tau0 (rad)": "start of contact, fixed by the preload: F(tau0) = Phi"
+                  " (Zharii 1996, eqs 10, 11; docs/physics.md 10.2)",
+    "F_x/(mu N)": "stall thrust (rotor held) over mu N, signed: + along +x on the rotor's"
+                  " bottom surface; T_imp/(mu P_imp) (Zharii 1996, eq 41) times sign u0"
+                  " (docs/physics.md 10.3)",
+    "F_x (N)": "stall thrust on the held rotor, signed: + along +x (docs/physics.md 10.3)",
+    "V/(omega u0)": "rotor surface speed V over the rod's peak surface speed omega |u0(x0)|"
+                    " (docs/physics.md 10.4)",
+    "F/(mu N)": "mean thrust on the moving rotor along the drive over mu N:"
+                " r = T_imp/(mu P_imp), eq 41 at V = 0 (docs/physics.md 10.4)",
+    "eta": "efficiency P_out/P_in; nan beyond the no-load speed, where F < 0"
+           " (docs/physics.md 10.4)",
+    "P_out/(mu N omega u0)": "output power V F over mu N omega |u0| (docs/physics.md 10.4)",
+    "P_in/(mu N omega u0)": "power the rod delivers through the contact over"
+                            " mu N omega |u0| (docs/physics.md 10.4)",
+    "P_loss/(mu N omega u0)": "power dissipated by slip over mu N omega |u0|"
+                              " (docs/physics.md 10.4)",
+    "V (m/s)": "rotor surface speed, along the drive (docs/physics.md 10.4)",
+    "F (N)": "mean thrust on the moving rotor, along the drive (docs/physics.md 10.4)",
+    "P_out (W)": "output power V F (docs/physics.md 10.4)",
+    "P_in (W)": "power the rod delivers through the contact (docs/physics.md 10.4)",
+    "P_loss (W)": "power dissipated by slip (docs/physics.md 10.4)",
 }
 
 #: What each file holds (its first comment line).
@@ -70,6 +108,12 @@ TITLES = {
               " (Figs. 4b, 7, 9)",
     "traction": "the traction profile across the contact at one time tau (Fig. 6)",
     "impulse": "the impulse ratio against psi at the contact's tau0 (Fig. 8)",
+    "motor_thrust": "the motor of Fig. 1 (docs/physics.md section 10, an extension of the"
+                    " paper): the drive, tau0 and the stall thrust along the rod, on the"
+                    " points of its plot",
+    "motor_speed": "the motor of Fig. 1 (docs/physics.md section 10, an extension of the"
+                   " paper): thrust, efficiency and powers against the rotor's speed at"
+                   " the contact point x0 (moving-rotor MDR of core.motor)",
 }
 
 #: The contact's parameters and the SI inputs, with their units ('' dimensionless).
@@ -125,21 +169,32 @@ def traction_table(traction: TractionScene, c: Contact, tau: float) -> dict[str,
     return table
 
 
+#: A line of a header block: a parameter (name, unit ('' if none), value) or a text.
+Line = tuple[str, str, float] | str
+
+
+def comments(key: str, lines: Sequence[Line] = ()) -> list[str]:
+    """The comment lines of file `key` (a `TITLES` key), without the leading '# ': what it
+    holds, the source, the app's version, then `lines`: a parameter written
+    'name (unit) = value' (`repr`: it reads back as the same float), a text as it is."""
+    out = [f"Zharii 1996 explorer: {TITLES[key]}",
+           f"source: {SOURCE}",
+           f"app: zharii-contact {app_version()}"]
+    out += [line if isinstance(line, str) else _parameter(*line) for line in lines]
+    return out
+
+
 def header(key: str, c: Contact, tau: float | None = None) -> list[str]:
     """The comment lines of file `key` ('curves', 'traction', 'impulse') for contact `c`
     and, for a traction profile, its time tau (rad); without the leading '# '."""
-    lines = [f"Zharii 1996 explorer: {TITLES[key]}",
-             f"source: {SOURCE}",
-             f"app: zharii-contact {app_version()}"]
-    for name, unit in PARAMETERS:
-        lines.append(_parameter(name, unit, getattr(c, name)))
+    lines: list[Line] = [(name, unit, getattr(c, name)) for name, unit in PARAMETERS]
     if c.scales is not None:
         lines.append("defined by SI inputs (psi from u0/H, eq 23; tau0 from h/H, eq 4):")
         inputs = c.scales.inputs
-        lines += [_parameter(name, unit, getattr(inputs, name)) for name, unit in SI_INPUTS]
+        lines += [(name, unit, getattr(inputs, name)) for name, unit in SI_INPUTS]
     if tau is not None:
-        lines.append(_parameter("tau", "rad", tau))
-    return lines
+        lines.append(("tau", "rad", tau))
+    return comments(key, lines)
 
 
 def _parameter(name: str, unit: str, value: float) -> str:
@@ -164,9 +219,26 @@ def file_name(key: str, c: Contact, tau: float | None = None) -> str:
     """The CSV file's name, after the parameters it holds (psi, tau0 and tau to 4
     significant digits, mu and nu to 6; the file's comment lines have them in full) and,
     for a traction profile, its time tau (rad)."""
-    name = (f"zharii_{key}_psi{_short(c.psi, '.4g')}_tau0_{_short(c.tau0, '.4g')}"
-            f"_mu{_short(c.mu, 'g')}_nu{_short(c.nu, 'g')}")
-    return f"{name}_tau{_short(tau, '.4g')}.csv" if tau is not None else f"{name}.csv"
+    parts = [("psi", c.psi, ".4g"), ("tau0", c.tau0, ".4g"), ("mu", c.mu, "g"),
+             ("nu", c.nu, "g")]
+    if tau is not None:
+        parts.append(("tau", tau, ".4g"))
+    return named(key, parts)
+
+
+#: A part of a file's name: (name, value, format spec) or (name, value, spec, unit).
+Part = tuple[str, float, str] | tuple[str, float, str, str]
+
+
+def named(key: str, parts: Sequence[Part]) -> str:
+    """'zharii_{key}' and each part as name, value (formatted by its spec, a negative
+    zero written 0) and unit, joined by '_', with '.csv': e.g. 'psi2.5', 'tau0_0.5236'
+    (a '_' after a name ending in a digit), 'x0_-5mm'."""
+    words = [f"zharii_{key}"]
+    for name, value, spec, *unit in parts:
+        sep = "_" if name[-1].isdigit() else ""
+        words.append(f"{name}{sep}{_short(value, spec)}{''.join(unit)}")
+    return "_".join(words) + ".csv"
 
 
 def _short(x: float, spec: str) -> str:

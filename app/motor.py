@@ -11,7 +11,9 @@
    `no_load_speed`, `best_efficiency`), computed on the shared worker thread of
    `app.methods` with a progress bar, so a slider never waits for them, and cached
    (bounded `lru_cache` on the rounded contact);
-4. CSV downloads of both curves.
+4. CSV downloads of both curves, in the explorer's style (`app.export`): a header block
+   with the source, the app's version and the inputs in SI, columns named with their
+   units, file names carrying the inputs.
 
 The state is a `MotorState` in the units people think in (mm, um, kHz, GPa, N); the
 scene converts to SI at the boundary and every number shown comes from `core.motor`.
@@ -42,6 +44,7 @@ from bokeh.events import Tap
 from bokeh.models import ColumnDataSource, DataRange1d, Label, Range1d
 from panel.io import hold
 
+from app import export
 from app.methods import WORKER, SharedWorker
 from app.scenes import FRAME_LEVEL, _figure, _style, fit_range
 from app.widgets import ERROR_STYLE, ExactSlider
@@ -120,6 +123,8 @@ FIELDS: dict[str, Field] = {
 }
 ROD_FIELDS = ("L", "delta", "nu_rod", "A", "f")
 ROTOR_FIELDS = ("R", "G", "nu", "mu", "N")
+#: The SI unit of each display unit (core's).
+SI_UNITS = {"mm": "m", "µm": "m", "kHz": "Hz", "GPa": "Pa", "N": "N", "": ""}
 
 
 @dataclass(frozen=True)
@@ -435,7 +440,7 @@ class MotorScene(pn.viewable.Viewer):
                                     sizing_mode="stretch_width", name="motor_message")
         self.downloads = {
             key: pn.widgets.FileDownload(callback=partial(self.csv_file, key),
-                                         filename=f"motor_{key}.csv", label=label,
+                                         filename=f"zharii_motor_{key}.csv", label=label,
                                          color="primary", width=190)
             for key, label in (("thrust", "CSV: thrust along rod"),
                                ("speed", "CSV: thrust-speed curve"))
@@ -798,45 +803,82 @@ class MotorScene(pn.viewable.Viewer):
 
     # -------------------------------------------------------------- CSV
 
-    def csv_text(self, key: str) -> str:
-        """CSV of 'thrust' (the rod: x0, drive, psi, tau0, stall thrust) or 'speed' (the
-        thrust-speed curve at x0, SI and dimensionless; header only where there is none)."""
+    def csv_table(self, key: str) -> dict[str, np.ndarray]:
+        """The columns of CSV 'thrust' (the rod, on the points of the stall-thrust plot:
+        x0, drive, psi, Phi, tau0, stall thrust) or 'speed' (the thrust-speed curve at x0,
+        dimensionless then SI; no rows where there is none), named as `app.export.COLUMNS`
+        names them."""
         if key == "thrust":
             p = self.profile
             assert p is not None
-            table = {"x0_m": p.x0, "u0_m": p.u0, "H_m": p.H, "psi": p.psi,
-                     "load_factor": p.load_factor, "opens": p.opens.astype(float),
-                     "tau0_rad": p.tau0, "thrust_ratio": p.thrust_ratio,
-                     "stall_thrust_N": p.stall_thrust}
-        elif key == "speed":
-            names = ("v", "V_m_per_s", "thrust_ratio", "thrust_N", "efficiency",
-                     "output_power_W", "input_power_W", "friction_loss_W")
-            ckey = self.curve_key()
-            try:
-                result = speed_curve(*ckey) if ckey is not None else None
-            except ValueError:
-                result = None
-            if result is None:
-                return ",".join(names) + "\n"
-            speed, force, power = self._scales()
-            c = result.curve
-            table = dict(zip(names, (c.v, c.v * speed, c.thrust_ratio, c.thrust_ratio * force,
-                                     c.efficiency, c.output_power * power,
-                                     c.input_power * power, c.friction_loss * power),
-                             strict=True))
-        else:
+            return {"x0 (m)": p.x0, "u0 (m)": p.u0, "H (m)": p.H, "psi": p.psi,
+                    "Phi": p.load_factor, "opens": p.opens.astype(float),
+                    "tau0 (rad)": p.tau0, "F_x/(mu N)": p.thrust_ratio,
+                    "F_x (N)": p.stall_thrust}
+        if key != "speed":
             raise KeyError(key)
-        body = np.column_stack([np.asarray(v, float) for v in table.values()])
-        out = io.StringIO()
-        np.savetxt(out, body, delimiter=",", header=",".join(table), comments="",
-                   fmt="%.12g")
-        return out.getvalue()
+        names = ("V/(omega u0)", "F/(mu N)", "eta", "P_out/(mu N omega u0)",
+                 "P_in/(mu N omega u0)", "P_loss/(mu N omega u0)", "V (m/s)", "F (N)",
+                 "P_out (W)", "P_in (W)", "P_loss (W)")
+        result = self._speed_result()
+        if result is None:
+            return {name: np.empty(0) for name in names}
+        speed, force, power = self._scales()
+        c = result.curve
+        return dict(zip(names, (c.v, c.thrust_ratio, c.efficiency, c.output_power,
+                                c.input_power, c.friction_loss, c.v * speed,
+                                c.thrust_ratio * force, c.output_power * power,
+                                c.input_power * power, c.friction_loss * power),
+                        strict=True))
+
+    def _speed_result(self) -> SpeedCurve | None:
+        """The thrust-speed curve at x0 (the cache's), or None where there is none."""
+        ckey = self.curve_key()
+        try:
+            return speed_curve(*ckey) if ckey is not None else None
+        except ValueError:  # e.g. x0 = 0: no tangential drive
+            return None
+
+    def csv_header(self, key: str) -> list[str]:
+        """The comment lines of CSV `key` (`app.export.comments`): the rod's and the
+        rotor's inputs in SI (the floats core computed with), and for 'speed' x0 and the
+        contact there."""
+        m = self.motor
+        names = (*ROD_FIELDS, *ROTOR_FIELDS, *(("x0",) if key == "speed" else ()))
+        lines: list[export.Line] = [
+            "inputs in SI (the rod: L half-length, delta thickness, nu_rod Poisson ratio,"
+            " A amplitude at x = L, f frequency; the rotor: R radius, G shear modulus,"
+            " nu Poisson ratio, mu friction coefficient, N preload"
+            f"{'; x0 the contact point' if key == 'speed' else ''}):"]
+        lines += [(n, SI_UNITS[FIELDS[n].unit],
+                   self.x0 if n == "x0" else getattr(m.rod if n in ROD_FIELDS else m,
+                                                     FIELDS[n].core))
+                  for n in names]
+        if key == "speed":
+            ckey = self.curve_key()
+            if ckey is None or self._speed_result() is None:
+                lines.append("no curve: " + ("the contact never opens at x0" if ckey is None
+                                             else "no tangential drive at x0"))
+            else:
+                lines.append("the contact at x0 (the curve is computed at these values,"
+                             f" rounded to {KEY_DIGITS} significant digits):")
+                lines += [(n, u, v) for (n, u), v in zip(export.PARAMETERS, ckey,
+                                                         strict=True)]
+        return export.comments(f"motor_{key}", lines)
+
+    def csv_text(self, key: str) -> str:
+        """CSV of 'thrust' or 'speed' (`csv_table`) in the explorer's style
+        (`app.export.csv_text`): the header block, the column names with units, the rows
+        to 10 significant digits."""
+        return export.csv_text(self.csv_table(key), self.csv_header(key))
 
     def csv_filename(self, key: str) -> str:
-        """The CSV's file name, after what it holds."""
-        if key == "speed":
-            return f"motor_thrust_speed_x0_{self.state.x0:g}mm.csv"
-        return "motor_stall_thrust_along_rod.csv"
+        """The CSV's file name (`app.export.named`): what it holds and the inputs in
+        display units (to 6 significant digits), x0 for the curve at x0."""
+        names = (*ROD_FIELDS, *ROTOR_FIELDS, *(("x0",) if key == "speed" else ()))
+        return export.named(f"motor_{key}", [
+            (n, getattr(self.state, n), "g", FIELDS[n].unit.replace("µ", "u"))
+            for n in names])
 
     def csv_file(self, key: str) -> io.StringIO:
         """The CSV as a file object for `pn.widgets.FileDownload` (named on the click)."""

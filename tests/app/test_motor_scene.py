@@ -5,14 +5,16 @@ Every plotted number must be exactly what `core.motor` computes for the scene's 
 
 from __future__ import annotations
 
-import csv
 import io
 import math
 import threading
+from importlib.metadata import version
 from types import SimpleNamespace
 
 import numpy as np
+import pandas as pd
 import pytest
+from test_export import Csv, written
 
 from app.methods import SharedWorker
 from app.motor import (
@@ -158,7 +160,21 @@ def test_never_opening_x0_has_no_curve(scene: MotorScene) -> None:
     wait(scene)
     assert scene.shown_key is None and list(scene.speed_source.data["v"]) == []
     assert "never opens" in scene.status.object
-    assert scene.csv_text("speed").count("\n") == 1  # the header only
+    text = scene.csv_text("speed")  # the header block and the column names, no rows
+    assert "# no curve: the contact never opens at x0\n" in text
+    table = pd.read_csv(io.StringIO(text), comment="#")
+    assert list(table.columns) == SPEED_NAMES and len(table) == 0
+
+
+def test_no_curve_at_the_centre_and_its_csv_says_why(scene: MotorScene) -> None:
+    scene.inputs["x0"].value = 0.0  # no tangential drive: core refuses psi = 0
+    wait(scene)
+    assert scene.shown is None and list(scene.speed_source.data["v"]) == []
+    text = scene.csv_text("speed")
+    assert "# no curve: no tangential drive at x0\n" in text
+    assert "# x0 (m) = 0.0\n" in text
+    assert list(pd.read_csv(io.StringIO(text), comment="#").columns) == SPEED_NAMES
+    assert scene.csv_filename("speed").endswith("_N0.5N_x0_0mm.csv")
 
 
 def test_tap_on_the_rod_moves_the_rotor(scene: MotorScene) -> None:
@@ -276,27 +292,123 @@ def test_bad_query_values_keep_the_last_good_state(scene: MotorScene) -> None:
     assert_rod_matches_core(scene)
 
 
-def test_csv_downloads(scene: MotorScene) -> None:
-    m, x0 = motor_of(scene)
-    rows = list(csv.DictReader(io.StringIO(scene.csv_file("thrust").getvalue())))
-    assert list(rows[0]) == ["x0_m", "u0_m", "H_m", "psi", "load_factor", "opens",
-                             "tau0_rad", "thrust_ratio", "stall_thrust_N"]
-    x = np.array([float(r["x0_m"]) for r in rows])
-    F = np.array([float(r["stall_thrust_N"]) for r in rows])
-    np.testing.assert_allclose(F, m.stall_thrust(x), rtol=1e-11)
-    assert scene.downloads["thrust"].filename.endswith(".csv")
+THRUST_NAMES = ["x0 (m)", "u0 (m)", "H (m)", "psi", "Phi", "opens", "tau0 (rad)",
+                "F_x/(mu N)", "F_x (N)"]
+SPEED_NAMES = ["V/(omega u0)", "F/(mu N)", "eta", "P_out/(mu N omega u0)",
+               "P_in/(mu N omega u0)", "P_loss/(mu N omega u0)", "V (m/s)", "F (N)",
+               "P_out (W)", "P_in (W)", "P_loss (W)"]
+#: The default state's inputs as the header writes them: SI units, the very floats.
+DEFAULT_SI = {"L": ("m", 0.02), "delta": ("m", 0.004), "nu_rod": ("", 0.31),
+              "A": ("m", 1e-05), "f": ("Hz", 40000.0), "R": ("m", 0.005),
+              "G": ("Pa", 79300000000.0), "nu": ("", 0.29), "mu": ("", 0.2),
+              "N": ("N", 0.5)}
+
+
+def inputs_si(s: MotorScene) -> dict[str, tuple[str, float]]:
+    """The inputs (SI unit, value) of the core motor built here (`motor_of`), x0 too."""
+    m, x0 = motor_of(s)
+    r = m.rod
+    return {"L": ("m", r.half_length), "delta": ("m", r.thickness), "nu_rod": ("", r.nu_rod),
+            "A": ("m", r.amplitude), "f": ("Hz", r.frequency), "R": ("m", m.R),
+            "G": ("Pa", m.G), "nu": ("", m.nu), "mu": ("", m.mu), "N": ("N", m.preload),
+            "x0": ("m", x0)}
+
+
+def use_other_state(s: MotorScene) -> None:
+    """The alumina rotor, another amplitude, x0 on the other side of the centre."""
+    s.rotor_select.value = "alumina"
+    s.inputs["A"]._entry.value = "7.25"
+    s.inputs["x0"]._entry.value = "3.5"
+    wait(s)
+
+
+def assert_header(got: Csv, s: MotorScene, key: str) -> None:
+    """The explorer's header block: source, version, the inputs in SI (x0 for the curve
+    at x0 only)."""
+    assert got.comments[0].startswith("Zharii 1996 explorer: the motor of Fig. 1")
+    assert any("Zharii" in line and "(1996)" in line for line in got.comments)
+    assert f"app: zharii-contact {version('zharii-contact')}" in got.comments
+    expected = inputs_si(s)
+    if key == "thrust":
+        del expected["x0"]
+        assert "x0" not in got.parameters
+    for name, (unit, value) in expected.items():
+        assert got.parameters[name] == (unit, value), name
+
+
+@pytest.mark.parametrize("other", [False, True])
+def test_csv_of_the_rod_is_core_with_units(scene: MotorScene, other: bool) -> None:
+    if other:
+        use_other_state(scene)
+    got = Csv(scene.csv_text("thrust"))  # also: no -0, pandas reads it as it is
+    assert got.names == THRUST_NAMES
+    assert list(got.descriptions) == THRUST_NAMES
+    assert "eq 41" in got.descriptions["F_x/(mu N)"] and "eq 10" in got.descriptions["Phi"]
+    assert_header(got, scene, "thrust")
+    if not other:
+        assert {k: got.parameters[k] for k in DEFAULT_SI} == DEFAULT_SI
+    m, _ = motor_of(scene)
+    x = rod_grid(m.rod.half_length)
+    col = got.columns
+    written(col["x0 (m)"], x)
+    written(col["u0 (m)"], m.rod.u0(x))
+    written(col["H (m)"], m.rod.H(x))
+    written(col["psi"], m.psi(x))
+    written(col["Phi"], m.load_factor(x))
+    eq(col["opens"], m.opens(x))
+    written(col["tau0 (rad)"], m.tau0(x))
+    written(col["F_x (N)"], m.stall_thrust(x))
+    written(col["F_x/(mu N)"], m.stall_thrust(x) / (m.mu * m.preload))
+    assert np.isnan(col["F_x (N)"][0]) and col["opens"][0] == 0  # never opens at the ends
+    driven = (col["opens"] == 1) & (np.abs(col["x0 (m)"]) > 1e-9)  # + along +x for x0 < 0
+    assert driven.sum() > 100
+    eq(np.sign(col["F_x (N)"][driven]), -np.sign(col["x0 (m)"][driven]))
+    name = scene.csv_file("thrust") and scene.downloads["thrust"].filename
+    assert name == scene.csv_filename("thrust")
+    if not other:
+        assert name == ("zharii_motor_thrust_L20mm_delta4mm_nu_rod0.31_A10um_f40kHz_R5mm"
+                        "_G79.3GPa_nu0.29_mu0.2_N0.5N.csv")
+    else:
+        assert name == ("zharii_motor_thrust_L20mm_delta4mm_nu_rod0.31_A7.25um_f40kHz_R5mm"
+                        "_G152GPa_nu0.22_mu0.3_N0.5N.csv")
+
+
+@pytest.mark.parametrize("other", [False, True])
+def test_csv_of_the_curve_at_x0_is_core_with_units(scene: MotorScene, other: bool) -> None:
+    if other:
+        use_other_state(scene)
     wait(scene)
-    rows = list(csv.DictReader(io.StringIO(scene.csv_file("speed").getvalue())))
-    assert list(rows[0]) == ["v", "V_m_per_s", "thrust_ratio", "thrust_N", "efficiency",
-                             "output_power_W", "input_power_W", "friction_loss_W"]
-    assert len(rows) == SPEED_POINTS
-    c = scene.shown.curve
-    np.testing.assert_allclose([float(r["thrust_ratio"]) for r in rows], c.thrust_ratio,
-                               rtol=1e-11, atol=1e-15)
-    speed = m.rod.omega * abs(float(m.rod.u0(x0)))
-    np.testing.assert_allclose([float(r["V_m_per_s"]) for r in rows], c.v * speed,
-                               rtol=1e-11)
-    assert "x0_-5mm" in scene.downloads["speed"].filename
+    got = Csv(scene.csv_text("speed"))
+    assert got.names == SPEED_NAMES
+    assert list(got.descriptions) == SPEED_NAMES
+    assert_header(got, scene, "speed")
+    m, x0 = motor_of(scene)
+    psi, tau0, mu, nu = contact_key(float(m.psi(x0)), float(m.tau0(x0)), m.mu, m.nu)
+    assert got.parameters["psi"] == ("", psi) and got.parameters["tau0"] == ("rad", tau0)
+    c = thrust_speed_curve(psi, tau0, SPEED_POINTS, mu=mu, nu=nu)
+    speed = m.rod.omega * abs(float(m.rod.u0(x0)))  # omega |u0|
+    force = m.mu * m.preload
+    col = got.columns
+    assert len(col["V (m/s)"]) == SPEED_POINTS
+    written(col["V/(omega u0)"], c.v)
+    written(col["F/(mu N)"], c.thrust_ratio)
+    written(col["eta"], c.efficiency)
+    written(col["P_out/(mu N omega u0)"], c.output_power)
+    written(col["P_in/(mu N omega u0)"], c.input_power)
+    written(col["P_loss/(mu N omega u0)"], c.friction_loss)
+    written(col["V (m/s)"], c.v * speed)
+    written(col["F (N)"], c.thrust_ratio * force)
+    written(col["P_out (W)"], c.output_power * force * speed)
+    written(col["P_in (W)"], c.input_power * force * speed)
+    written(col["P_loss (W)"], c.friction_loss * force * speed)
+    assert col["V (m/s)"][0] == col["P_out (W)"][0] == 0  # the held rotor
+    assert col["F (N)"][0] == pytest.approx(abs(float(m.stall_thrust(x0))), rel=1e-3)
+    scene.csv_file("speed")
+    name = scene.downloads["speed"].filename
+    assert name == scene.csv_filename("speed")
+    x0_part = "_x0_3.5mm" if other else "_x0_-5mm"
+    assert name.startswith("zharii_motor_speed_L20mm_delta4mm_") and name.endswith(
+        f"_N0.5N{x0_part}.csv")
 
 
 def test_close_cancels_the_waiting_request() -> None:
