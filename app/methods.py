@@ -28,7 +28,7 @@ from bokeh.models import ColorBar, ColumnDataSource, LogColorMapper, LogTicker, 
 from bokeh.palettes import Viridis256
 from panel.io import hold
 
-from app.scenes import CURVE_POINTS, TOOLS, _figure, _style, fit_range
+from app.scenes import CURVE_POINTS, TOOLS, fit_range, new_figure, style_figure
 from app.widgets import LabelledCheckbox
 from core import Contact
 
@@ -122,13 +122,13 @@ class MethodsScene:
         self.run_button.on_click(lambda _: self.run())
         self.choice.param.watch(lambda _: self.run(), "value")
 
-        fig = _figure("T / T₀: methods against the closed form", "τ = ωt (rad)", "T / T₀")
+        fig = new_figure("T / T₀: methods against the closed form", "τ = ωt (rad)", "T / T₀")
         fig.line("tau", "T", source=self.exact, color="black", line_width=4, alpha=0.35,
                  legend_label="closed form")
         fig.multi_line("xs", "ys", source=self.source, color="color", line_width=2,
                        legend_field="label")
         fig.legend.location = "bottom_left"
-        _style(fig)
+        style_figure(fig)
         self.figure = fig
         # collapsed by default; while collapsed nothing here is computed or sent (a hidden
         # plot whose data changes also makes the browser lay out the page again)
@@ -252,7 +252,7 @@ class MethodsScene:
         data = read_csv(RESULTS / "speed_accuracy.csv")
         if data is None or "err" not in data or "wall_time" not in data:
             return None
-        fig = _figure("Speed against accuracy (benchmarks/results)", "wall time (s)",
+        fig = new_figure("Speed against accuracy (benchmarks/results)", "wall time (s)",
                       "max error of T / T₀", x_axis_type="log", y_axis_type="log",
                       x_range=Range1d(1e-5, 10), y_range=Range1d(1e-17, 10))
         methods = list(dict.fromkeys(data["method"].tolist()))
@@ -264,7 +264,7 @@ class MethodsScene:
                             legend_label=name)
         fig.legend.location = "bottom_left"
         fig.legend.label_text_font_size = "10pt"
-        _style(fig)
+        style_figure(fig)
         fig.height = 420
         return fig
 
@@ -288,7 +288,7 @@ class MethodsScene:
                          zip(src.data["method"], src.data["y"], strict=True)]
         mapper = LogColorMapper(palette=Viridis256, low=1e-16, high=1.0)
         dx = float(np.min(np.diff(np.log10(psis)))) if psis.size > 1 else 1.0
-        fig = _figure("Stability map: error over ψ (x) and τ₀ (rows) per method", "log₁₀ ψ",
+        fig = new_figure("Stability map: error over ψ (x) and τ₀ (rows) per method", "log₁₀ ψ",
                       "method", x_range=Range1d(math.log10(psis[0]) - dx,
                                                math.log10(psis[-1]) + dx),
                       y_range=Range1d(0, len(methods)), height=60 + 34 * len(methods),
@@ -299,7 +299,7 @@ class MethodsScene:
         fig.yaxis.major_label_overrides = {i + 0.5: m for i, m in enumerate(methods)}
         fig.add_layout(ColorBar(color_mapper=mapper, ticker=LogTicker(), width=12,
                                 title="error"), "right")
-        _style(fig)
+        style_figure(fig)
         return fig
 
     def view(self) -> pn.Card:

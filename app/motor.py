@@ -46,7 +46,7 @@ from panel.io import hold
 
 from app import export
 from app.methods import WORKER, SharedWorker
-from app.scenes import FRAME_LEVEL, _figure, _style, fit_range
+from app.scenes import FRAME_LEVEL, fit_range, new_figure, style_figure
 from app.widgets import ERROR_STYLE, ExactSlider
 from app.wire import inline
 from core.motor import (
@@ -354,7 +354,7 @@ class MotorScene(pn.viewable.Viewer):
     def _figures(self) -> None:
         # the rod, to scale (x and y in mm); the range follows an invisible frame only,
         # so that moving the rotor leaves it as it is
-        fig = _figure("Rod and rotor", "x (mm)", "y (mm)", match_aspect=True,
+        fig = new_figure("Rod and rotor", "x (mm)", "y (mm)", match_aspect=True,
                       x_range=DataRange1d(), y_range=DataRange1d(), width=900, height=300,
                       sizing_mode="scale_width")
         frame = fig.scatter("x", "y", source=self.frame_source, alpha=0.0, size=1)
@@ -378,10 +378,10 @@ class MotorScene(pn.viewable.Viewer):
                              background_fill_alpha=0.8, level=FRAME_LEVEL,
                              name="motor_readout")
         fig.add_layout(self.readout)
-        _style(fig)
+        style_figure(fig)
         self.rod_figure = fig
 
-        fig = _figure("Stall thrust along the rod (rotor held)", "x₀ (mm)",
+        fig = new_figure("Stall thrust along the rod (rotor held)", "x₀ (mm)",
                       "stall thrust (mN, + along +x)")
         fig.vstrip("left", "right", source=self.invalid_source, fill_color=INVALID_COLOR,
                    fill_alpha=0.3, line_color=None, legend_label="contact never opens")
@@ -394,25 +394,25 @@ class MotorScene(pn.viewable.Viewer):
         fig.scatter("x_mm", "thrust_mN", source=self.x0_source, size=12, color=ROTOR_COLOR,
                     line_color="black", level=FRAME_LEVEL)
         fig.legend.location = "top_right"
-        _style(fig)
+        style_figure(fig)
         self.thrust_figure = fig
 
         speed_range = Range1d(0, 1)
-        fig = _figure("Thrust against rotor speed at x₀", "rotor speed V (mm/s)",
+        fig = new_figure("Thrust against rotor speed at x₀", "rotor speed V (mm/s)",
                       "thrust (mN, along the drive)", x_range=speed_range)
         fig.line("V_mm_s", "thrust_mN", source=self.speed_source, color=THRUST_COLOR,
                  line_width=3)
         fig.scatter("V_mm_s", "thrust_mN", source=self.marks_source, size=12,
                     marker="diamond", color="label", line_color="black")
-        _style(fig)
+        style_figure(fig)
         self.speed_figure = fig
-        fig = _figure("Efficiency against rotor speed at x₀", "rotor speed V (mm/s)",
+        fig = new_figure("Efficiency against rotor speed at x₀", "rotor speed V (mm/s)",
                       "efficiency (%)", x_range=speed_range)
         fig.line("V_mm_s", "efficiency_pct", source=self.speed_source,
                  color=EFFICIENCY_COLOR, line_width=3)
         fig.scatter("V_mm_s", "efficiency_pct", source=self.marks_source, size=12,
                     marker="diamond", color="label", line_color="black")
-        _style(fig)
+        style_figure(fig)
         self.efficiency_figure = fig
 
     def _widgets(self) -> None:

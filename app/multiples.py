@@ -16,7 +16,7 @@ from bokeh.layouts import gridplot
 from bokeh.models import ColumnDataSource
 
 from app.phases import STICK_COLOR, style
-from app.scenes import TractionScene, _figure, _style
+from app.scenes import TractionScene, new_figure, style_figure
 from app.state import PRESETS
 from core import Contact
 
@@ -49,7 +49,7 @@ class SmallMultiples:
             self.traction.update_contact(c)
             self.sources[key].data = {k: v[0] for k, v in
                                       self.traction.profiles(c, np.array([p.tau])).items()}
-            fig = _figure(panel_title(key), "r / a*", "τᵤ / (μ p*)", height=230,
+            fig = new_figure(panel_title(key), "r / a*", "τᵤ / (μ p*)", height=230,
                           min_width=220, x_range=self.traction.figure.x_range.clone(),
                           y_range=self.traction.figure.y_range.clone())
             source = self.sources[key]
@@ -59,7 +59,7 @@ class SmallMultiples:
                 fig.line("r", col, source=source, line_dash="dashed", color="grey",
                          line_width=1.5)
             fig.line("r", "traction", source=source, color="black", line_width=2.5)
-            _style(fig)
+            style_figure(fig)
             fig.title.text_font_size = "12pt"
             fig.title.text_color = style(c.phase(p.tau)).color
             figs.append(fig)

@@ -30,7 +30,7 @@ if TYPE_CHECKING:
 #: The name of the view in the URL (`view=present`).
 VIEW = "present"
 
-#: The spheres' plot outside its frame (px, with the type of `app.scenes._style`):
+#: The spheres' plot outside its frame (px, with the type of `app.scenes.style_figure`):
 #: (across, down): its borders across; its title, toolbar and borders down.
 SPHERES_RIM = (10, 37)
 #: The disc's plot outside its frame (px): (across, down): the y axis with its label and

@@ -54,7 +54,7 @@ LINE_COLORS = ("#000000", "#D55E00", "#0072B2", "#CC79A7", "#009E73")
 FRAME_LEVEL = "overlay"
 
 
-def _style(fig) -> None:
+def style_figure(fig) -> None:
     """Large type, readable on a projector."""
     fig.title.text_font_size = "15pt"
     for axis in (*fig.xaxis, *fig.yaxis):
@@ -124,7 +124,10 @@ def fit_range(rng: Range1d, *columns, pad: float = 0.06, snap: bool = False) -> 
         rng.start, rng.end = lo, hi
 
 
-def _figure(title: str, x_label: str, y_label: str, **kwargs):
+def new_figure(title: str, x_label: str, y_label: str, **kwargs):
+    """A Bokeh figure as every scene has it: unit ranges to be fitted, the scenes'
+    tools, stretching to its column, and a save tool that downloads a PNG named after
+    the title (`png_name`); `kwargs` override these and go to `bokeh.plotting.figure`."""
     kwargs.setdefault("x_range", Range1d(0, 1))
     kwargs.setdefault("y_range", Range1d(0, 1))
     kwargs.setdefault("tools", TOOLS)
@@ -173,7 +176,7 @@ class TractionScene(Scene):
     def __init__(self) -> None:
         super().__init__({k: [] for k in ("r", "traction", "upper", "lower", "stick_lo",
                                           "stick_hi")})
-        fig = _figure("Traction profile", "r / a*", "traction  τᵤ / (μ p*)")
+        fig = new_figure("Traction profile", "r / a*", "traction  τᵤ / (μ p*)")
         stick = fig.varea("r", "stick_lo", "stick_hi", source=self.source,
                           fill_color=STICK_COLOR, fill_alpha=0.25, level=FRAME_LEVEL)
         envelope = [fig.line("r", col, source=self.source, line_dash="dashed", color="grey",
@@ -198,7 +201,7 @@ class TractionScene(Scene):
                                  background_fill_color="white", background_fill_alpha=0.8,
                                  name="traction_phase", level=FRAME_LEVEL)
         fig.add_layout(self.phase_label)
-        _style(fig)
+        style_figure(fig)
         self.figure = fig
 
     def update_contact(self, c: Contact) -> None:
@@ -256,7 +259,7 @@ class DiscScene(Scene):
                           "outer": [0.0, 0.0], "color": [STICK_COLOR, STICK_COLOR],
                           "label": ["stick", "slip"]})
         # no legend: a legend built from the data would repaint the whole plot per frame
-        fig = _figure("Contact disc (top view)", "x / a*", "y / a*", match_aspect=True,
+        fig = new_figure("Contact disc (top view)", "x / a*", "y / a*", match_aspect=True,
                       sizing_mode="fixed", width=350, height=350)
         self.envelope = fig.circle(0, 0, radius=1.0, fill_alpha=0, line_dash="dotted",
                                    line_color="grey", line_width=2)
@@ -264,7 +267,7 @@ class DiscScene(Scene):
                     fill_color="color", line_color="black", line_width=1, level=FRAME_LEVEL)
         fig.x_range.start, fig.x_range.end = -1.15, 1.15
         fig.y_range.start, fig.y_range.end = -1.15, 1.15
-        _style(fig)
+        style_figure(fig)
         self.figure = fig
 
     def update_contact(self, c: Contact) -> None:
@@ -335,7 +338,7 @@ class CurveScene(Scene):
         for k, ((title, y_label, cols), landmarks) in enumerate(
                 zip(self._panels(), self._landmarks, strict=True)):
             extra = {"x_range": figs[0].x_range} if figs else {}
-            fig = _figure(title, "τ = ωt (rad)", y_label, **extra)
+            fig = new_figure(title, "τ = ωt (rad)", y_label, **extra)
             fig.segment(x0="x", y0="lo", x1="x", y1="hi", source=landmarks,
                         line_color="#bbbbbb", line_width=1, line_dash="dashed")
             fig.text("x", "hi", text="label", source=landmarks, text_align="center",
@@ -358,7 +361,7 @@ class CurveScene(Scene):
             fig.segment(x0="x", y0="lo", x1="x", y1="hi", source=self.marker,
                         line_color="#666666", line_width=2, line_dash="dotted",
                         level=FRAME_LEVEL, **view)
-            _style(fig)
+            style_figure(fig)
             if k:
                 fig.title.text_font_size = "13pt"
             figs.append(fig)
@@ -488,7 +491,7 @@ class RadiiScene(CurveScene):
     def drive_figure(self):
         """Fig. 4a, built on first use: u_z0 / H against tau, the level h / H above which
         the spheres touch, and the approach scale H - h."""
-        fig = _figure("Height of the lower sphere u_z0 / H (Fig. 4a)", "τ = ωt (rad)",
+        fig = new_figure("Height of the lower sphere u_z0 / H (Fig. 4a)", "τ = ωt (rad)",
                       "u_z0 / H", height=220, x_range=Range1d(0.0, math.pi))
         fig.line("tau", "uz", source=self.drive, color="black", line_width=2)
         fig.line("tau", "touch", source=self.drive, color="#D55E00", line_width=4,
@@ -503,7 +506,7 @@ class RadiiScene(CurveScene):
                     size=10, color="#0072B2")
         fig.text("x", "mid", text="label", source=self.bracket, x_offset=6,
                  text_baseline="middle", text_font_size="12pt", text_color="#0072B2")
-        _style(fig)
+        style_figure(fig)
         fig.legend.location = "bottom_center"
         return fig
 
@@ -637,7 +640,7 @@ class ImpulseScene(Scene):
 
     def _make(self, axis: str):
         x_range = Range1d(*self.LOG_RANGE) if axis == "log" else Range1d(0.0, self.LINEAR_MAX)
-        fig = _figure("Tangential impulse T_imp / (μ P_imp)", "ψ", "T_imp / (μ P_imp)",
+        fig = new_figure("Tangential impulse T_imp / (μ P_imp)", "ψ", "T_imp / (μ P_imp)",
                       x_axis_type=axis, x_range=x_range)
         fig.line("psi", "ratio", source=self.source, color="black", line_width=3)
         fig.scatter("psi", "ratio", source=self.points, size=11, color="white",
@@ -646,7 +649,7 @@ class ImpulseScene(Scene):
                  text_font_style="bold", x_offset=6, y_offset=-6)
         fig.scatter("psi", "ratio", source=self.marker, size=14, color="#D55E00",
                     line_color="black", level=FRAME_LEVEL)
-        _style(fig)
+        style_figure(fig)
         return fig
 
     def set_log(self, log: bool) -> None:

@@ -28,7 +28,7 @@ from bokeh.models import ColumnDataSource, Label, Range1d, SaveTool
 from bokeh.plotting import figure
 
 from app.phases import STICK_COLOR, style
-from app.scenes import FRAME_LEVEL, Scene, _style, png_name
+from app.scenes import FRAME_LEVEL, Scene, png_name, style_figure
 from app.wire import column, inline
 from core import Contact
 
@@ -179,7 +179,7 @@ class SpheresScene(Scene):
                              text_color="#333333", name="spheres_rest_note")
         fig.add_layout(self.note)
         fig.add_layout(self.h_label)
-        _style(fig)
+        style_figure(fig)
         self.figure = fig
 
     def update_contact(self, c: Contact) -> None:
