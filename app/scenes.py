@@ -305,12 +305,11 @@ class CurveScene(Scene):
                                        name=f"{self.name}_marker")
         #: the paper's landmarks on the time axis: tau0, pi/2, tau1 (psi > 1), pi - tau0
         #: (one source per panel)
-        self.landmarks = ColumnDataSource({"x": [], "label": [], "lo": [], "hi": []},
-                                          name=f"{self.name}_landmarks")
-        self._landmarks = [self.landmarks] + [
-            ColumnDataSource({"x": [], "label": [], "lo": [], "hi": []},
-                             name=f"{self.name}_landmarks_{i}")
-            for i in range(1, len(self._panels()))]
+        empty = {"x": [], "label": [], "align": [], "lo": [], "hi": []}
+        self._landmarks = [
+            ColumnDataSource(empty, name=f"{self.name}_landmarks" + (f"_{i}" if i else ""))
+            for i in range(len(self._panels()))]
+        self.landmarks = self._landmarks[0]
 
     def _panels(self) -> tuple[tuple[str, str, tuple[str, ...]], ...]:
         return self.panels or ((self.title, self.y_label,
@@ -341,7 +340,7 @@ class CurveScene(Scene):
             fig = new_figure(title, "τ = ωt (rad)", y_label, **extra)
             fig.segment(x0="x", y0="lo", x1="x", y1="hi", source=landmarks,
                         line_color="#bbbbbb", line_width=1, line_dash="dashed")
-            fig.text("x", "hi", text="label", source=landmarks, text_align="center",
+            fig.text("x", "hi", text="label", source=landmarks, text_align="align",
                      text_baseline="top", text_font_size="12pt", text_color="#555555",
                      y_offset=2)
             drawn = [(c, lb, color, dash) for c, lb, color, dash in self.curves if c in cols]
@@ -393,8 +392,12 @@ class CurveScene(Scene):
                                                 self._landmarks, strict=True):
             y = fig.y_range
             fit_range(y, *(columns[col] for col in cols), pad=0.03, snap=True)
+            # the first and last labels inside the frame (at its edges, centred, they
+            # would be cut)
+            align = ["left", *["center"] * (len(marks) - 2), "right"]
             landmarks.data = {"x": [x for x, _ in marks], "label": [lb for _, lb in marks],
-                              "lo": [y.start] * len(marks), "hi": [y.end] * len(marks)}
+                              "align": align, "lo": [y.start] * len(marks),
+                              "hi": [y.end] * len(marks)}
 
     def update_tau(self, c: Contact, tau: float) -> None:
         values = self.columns(c, np.array([tau]))

@@ -172,11 +172,14 @@ class SpheresScene(Scene):
         self.badge = fig.text(-1.5, 2.05, text="text", source=s["spheres_badge"],
                               text_color="color", text_font_size="20pt",
                               text_font_style="bold", text_baseline="top", level=FRAME_LEVEL)
+        # (over the spheres, on a white ground: the lower sphere may pass behind them)
+        ground = {"background_fill_color": "white", "background_fill_alpha": 0.85,
+                  "level": FRAME_LEVEL}
         self.note = Label(x=-1.55, y=-2.42, text="", text_font_size="11pt",
-                          text_color="#333333", name="spheres_note")
+                          text_color="#333333", name="spheres_note", **ground)
         self.h_label = Label(x=-1.55, y=-1.78, text="", text_font_size="11pt",
-                             text_baseline="top",
-                             text_color="#333333", name="spheres_rest_note")
+                             text_baseline="top", text_color="#333333",
+                             name="spheres_rest_note", **ground)
         fig.add_layout(self.note)
         fig.add_layout(self.h_label)
         style_figure(fig)

@@ -751,6 +751,7 @@ def test_time_axes_mark_the_papers_landmarks(ex: Explorer, psi: float) -> None:
         d = scene.landmarks.data
         assert d["x"] == expected
         assert d["label"] == ["τ₀", "π/2", *([] if psi <= 1 else ["τ₁"]), "π−τ₀"]
+        assert d["align"] == ["left", "center", *([] if psi <= 1 else ["center"]), "right"]
         assert d["hi"] == [scene.figures[0].y_range.end] * len(expected)
 
 
