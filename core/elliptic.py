@@ -52,17 +52,47 @@ def _series_coefficients(n: int) -> tuple[float, ...]:
     return tuple(c[::-1])
 
 
-_COEFFS_REVERSED = _series_coefficients(_N_TERMS)
+# the 24 coefficients, highest power first, as named constants: the polynomial below is
+# written out term by term (a loop over a tuple keeps numba from vectorising its callers)
+(_C23, _C22, _C21, _C20, _C19, _C18, _C17, _C16, _C15, _C14, _C13, _C12, _C11, _C10, _C9,
+ _C8, _C7, _C6, _C5, _C4, _C3, _C2, _C1, _C0) = _series_coefficients(_N_TERMS)
+
+
+@njit(cache=True, inline="always")
+def quartic_series(m: float) -> float:
+    """J(m) by its hypergeometric series (Horner, 24 terms), for 0 <= m <= SERIES_LIMIT:
+    straight-line code with no branch, so that loops over many m compile to SIMD code."""
+    acc = _C23
+    acc = acc * m + _C22
+    acc = acc * m + _C21
+    acc = acc * m + _C20
+    acc = acc * m + _C19
+    acc = acc * m + _C18
+    acc = acc * m + _C17
+    acc = acc * m + _C16
+    acc = acc * m + _C15
+    acc = acc * m + _C14
+    acc = acc * m + _C13
+    acc = acc * m + _C12
+    acc = acc * m + _C11
+    acc = acc * m + _C10
+    acc = acc * m + _C9
+    acc = acc * m + _C8
+    acc = acc * m + _C7
+    acc = acc * m + _C6
+    acc = acc * m + _C5
+    acc = acc * m + _C4
+    acc = acc * m + _C3
+    acc = acc * m + _C2
+    acc = acc * m + _C1
+    return acc * m + _C0
 
 
 @njit(cache=True)
 def quartic_integral_float(m: float, mc: float) -> float:
     """J(m) for one float m, with mc = 1 - m given (see ``quartic_integral``)."""
     if m < SERIES_LIMIT:
-        acc = 0.0
-        for c in _COEFFS_REVERSED:
-            acc = acc * m + c
-        return acc
+        return quartic_series(m)
     k, e = _ellipkm1(mc), _ellipe(m)
     return (2.0 * (2.0 * m - 1.0) * e + mc * (2.0 - 3.0 * m) * k) / (3.0 * m * m)
 

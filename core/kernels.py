@@ -90,56 +90,69 @@ def half_sines_of(tau0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return s, c
 
 
+@njit(cache=True, inline="always")
+def _grid_pieces(psi: float, tau0: float, t1: float, n: int
+                 ) -> tuple[float, float, float, float, int, int, int, int]:
+    """The pieces of ``tau_grid``: ends (tau0, pi/2, ..., pi - tau0), the number of points
+    on each phase, and the total size."""
+    tau_end = math.pi - tau0
+    half = n // 2
+    if psi <= 1.0:
+        e2, e3 = tau_end, tau_end
+        c0, c1, c2 = half, n - half, 0
+    else:
+        share = round((t1 - HALF_PI_HI) / (tau_end - HALF_PI_HI) * (n - half))
+        e2, e3 = t1, tau_end
+        c0, c1, c2 = half, share + max(n // 8, 8), n - half - share
+    # a piece of zero length gets no point, any other at least one
+    c0 = max(c0, 1) if HALF_PI_HI > tau0 else 0
+    c1 = max(c1, 1) if e2 > HALF_PI_HI else 0
+    c2 = max(c2, 1) if e3 > e2 else 0
+    return tau0, e2, e3, tau_end, c0, c1, c2, c0 + c1 + c2 + 1
+
+
+@njit(cache=True, inline="always")
+def _fill_grid(tau0: float, e2: float, e3: float, tau_end: float, c0: int, c1: int,
+               c2: int, out: np.ndarray) -> None:
+    """``tau_grid`` into out[:c0 + c1 + c2 + 1]: piece [a, b) of k points is
+    a + i (b - a)/k, i = 0 ... k - 1, then pi - tau0."""
+    pos = 0
+    for a, b, k in ((tau0, HALF_PI_HI, c0), (HALF_PI_HI, e2, c1), (e2, e3, c2)):
+        step = (b - a) / k if k else 0.0
+        for j in range(k):
+            out[pos + j] = j * step + a
+        pos += k
+    out[pos] = tau_end
+
+
 @njit(cache=True)
 def tau_grid(psi: float, tau0: float, t1: float, n: int) -> np.ndarray:
     """About n sorted times over [tau0, pi - tau0] holding tau0, pi/2, tau1 (= t1, when
     psi > 1) and pi - tau0 exactly, uniform on each phase, with n/8 extra points in
-    partial stick. Piece [a, b) of k points is a + i (b - a)/k, i = 0 ... k - 1."""
-    tau_end = math.pi - tau0
-    half = n // 2
-    ends = np.empty(4)
-    counts = np.empty(3, dtype=np.int64)
-    ends[0], ends[1] = tau0, HALF_PI_HI
-    if psi <= 1.0:
-        ends[2] = tau_end
-        counts[0], counts[1] = half, n - half
-        pieces = 2
-    else:
-        share = round((t1 - HALF_PI_HI) / (tau_end - HALF_PI_HI) * (n - half))
-        ends[2], ends[3] = t1, tau_end
-        counts[0], counts[1], counts[2] = half, share + max(n // 8, 8), n - half - share
-        pieces = 3
-    size = 1
-    for i in range(pieces):
-        counts[i] = max(counts[i], 1) if ends[i + 1] > ends[i] else 0
-        size += counts[i]
+    partial stick."""
+    a, e2, e3, end, c0, c1, c2, size = _grid_pieces(psi, tau0, t1, n)
     out = np.empty(size)
-    pos = 0
-    for i in range(pieces):
-        a, k = ends[i], counts[i]
-        step = (ends[i + 1] - a) / k if k else 0.0
-        for j in range(k):
-            out[pos + j] = j * step + a
-        pos += k
-    out[size - 1] = tau_end
+    _fill_grid(a, e2, e3, end, c0, c1, c2, out)
     return out
 
 
 @njit(cache=True)
 def curve(psi: float, tau0: float, n: int) -> tuple[np.ndarray, float]:
     """One contact in one call: rows (tau, T / T0, b / a*) on ``tau_grid`` of about n
-    points, and the impulse ratio T_imp / (mu P_imp) (eq 41)."""
+    points (written straight into the first row), and the impulse ratio
+    T_imp / (mu P_imp) (eq 41)."""
     s, c = half_sines(tau0)
     t1 = min(tau1(psi, s, c), math.pi - tau0)
-    tau = tau_grid(psi, tau0, t1, n)
-    out = np.empty((3, tau.size))
+    a, e2, e3, end, c0, c1, c2, size = _grid_pieces(psi, tau0, t1, n)
+    out = np.empty((3, size))
+    t, T, b = out[0], out[1], out[2]
+    _fill_grid(a, e2, e3, end, c0, c1, c2, t)
     inv_s = 1.0 / s
     k = stick_clock(psi)
     scale = force_scale(s)
-    for j in range(tau.size):
-        w = clock(tau[j], inv_s)
+    for j in range(size):
+        w = clock(t[j], inv_s)
         b2 = stick_radius_squared(w, psi, k)
-        out[0, j] = tau[j]
-        out[1, j] = tangential_force(cube(one_minus_square(w)), cube(b2), w, psi, scale)
-        out[2, j] = math.sqrt(b2)
+        T[j] = tangential_force(cube(one_minus_square(w)), cube(b2), w, psi, scale)
+        b[j] = math.sqrt(b2)
     return out, impulse_ratio_float(psi, s * s, c * c)

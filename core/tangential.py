@@ -27,7 +27,7 @@ from numba import float64, njit, vectorize
 from numpy.typing import ArrayLike, NDArray
 
 from core.clock import HALF_PI_HI, HALF_PI_LO, clock, one_minus_square
-from core.elliptic import quartic_integral_float
+from core.elliptic import SERIES_LIMIT, quartic_integral_float, quartic_series
 from core.hertz import pressure
 
 
@@ -162,22 +162,50 @@ def impulse_ratio_float(psi: float, m0: float, mc0: float) -> float:
 
 
 @njit(cache=True, inline="always")
-def ratio_above_one(psi: float, m0: float, mc0: float, j0: float) -> float:
-    """k J(k^2 m0) / J(m0) of eq 41 for psi > 1, given j0 = J(m0) (one per tau0)."""
+def _k2_and_m1(psi: float, m0: float) -> tuple[float, float]:
+    """k^2 = 2/(psi + 1) and the parameter k^2 m0 of J(tau1) in eq 41 (psi > 1)."""
     k2 = 2.0 / (psi + 1.0)
-    j1 = quartic_integral_float(k2 * m0, (psi - 1.0) / (psi + 1.0) + k2 * mc0)
+    return k2, k2 * m0
+
+
+@njit(cache=True, inline="always")
+def _ratio_of(k2: float, j1: float, j0: float) -> float:
+    """Eq 41 for psi > 1 from k^2, J(k^2 m0) and J(m0): k J(k^2 m0) / J(m0)."""
     return math.sqrt(k2) * j1 / j0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
+def ratio_above_one(psi: float, m0: float, mc0: float, j0: float) -> float:
+    """k J(k^2 m0) / J(m0) of eq 41 for psi > 1, given j0 = J(m0) (one per tau0)."""
+    k2, m1 = _k2_and_m1(psi, m0)
+    return _ratio_of(k2, quartic_integral_float(m1, (psi - 1.0) / (psi + 1.0) + k2 * mc0), j0)
+
+
+@njit(cache=True, error_model="numpy")
 def impulse_ratio_of_psis(psi: np.ndarray, m0: float, mc0: float) -> np.ndarray:
-    """``impulse_ratio_float`` of every element of psi at one tau0 (J(m0) computed once)."""
+    """``impulse_ratio_float`` of every element of psi at one tau0, bit for bit (J(m0)
+    computed once).
+
+    Two passes, so that the first compiles to SIMD code: every element by the
+    branch-free series of J (``quartic_series``, which is ``quartic_integral_float``
+    where k^2 m0 < SERIES_LIMIT, i.e. for every psi > 10 m0 - 1, and for every psi when
+    m0 < SERIES_LIMIT), then the few elements with psi > 1 and k^2 m0 >= SERIES_LIMIT
+    again by ``ratio_above_one``. (error_model="numpy": divisions without a zero check,
+    which would keep the loop scalar; no divisor here can be 0.)
+    """
     out = np.empty(psi.shape)
     flat, o = psi.reshape(-1), out.reshape(-1)
     j0 = quartic_integral_float(m0, mc0)
     for i in range(flat.size):
         p = flat[i]
-        o[i] = p if p <= 1.0 else ratio_above_one(p, m0, mc0, j0)
+        k2, m1 = _k2_and_m1(p, m0)
+        above = _ratio_of(k2, quartic_series(min(m1, SERIES_LIMIT)), j0)
+        o[i] = p if p <= 1.0 else above
+    if m0 >= SERIES_LIMIT:  # else k^2 m0 < m0 < SERIES_LIMIT for every psi > 1
+        for i in range(flat.size):
+            p = flat[i]
+            if p > 1.0 and _k2_and_m1(p, m0)[1] >= SERIES_LIMIT:
+                o[i] = ratio_above_one(p, m0, mc0, j0)
     return out
 
 

@@ -82,6 +82,54 @@ def test_impulse_ratio_over_arrays_of_psi_and_tau0() -> None:
     np.testing.assert_array_equal(np.diag(grid), got)
 
 
+@pytest.mark.parametrize("tau0", [math.pi / 6, 0.6435, -0.9, -1.5, 1.5, 1.5 - 1e-9])
+def test_impulse_ratio_of_many_psi_is_that_of_contact(tau0: float) -> None:
+    """One tau0, many psi (two compiled passes: the series of J for all, then the
+    elliptic form where k^2 m0 >= 0.2, i.e. 1 < psi < 10 m0 - 1): bit for bit the scalar
+    formula, on both sides of that edge and in any order."""
+    m0 = (1.0 - math.sin(tau0)) / 2.0
+    edge = 10.0 * m0 - 1.0  # k^2 m0 = 0.2
+    psi = np.concatenate([np.linspace(0.0, 30.0, 301), [1.0, 1 + 1e-12, 1e6, 1e12],
+                          edge * np.array([1 - 1e-9, 1.0, 1 + 1e-9]) if edge > 1 else []])
+    psi = np.random.default_rng(3).permutation(psi)
+    got = impulse_ratio(psi, tau0)
+    for p, g in zip(psi, got, strict=True):
+        assert g == Contact(p, tau0).impulse_ratio
+    grid = impulse_ratio(psi.reshape(-1, 1), tau0)  # any shape
+    np.testing.assert_array_equal(grid.ravel(), got)
+
+
+def _grid_as_documented(c: Contact, n: int) -> list[float]:
+    """``Contact.tau_grid(n)`` by its documented rule, in plain Python: pieces
+    [tau0, pi/2), [pi/2, tau1), [tau1, pi - tau0) (or [pi/2, pi - tau0) for psi <= 1) of
+    n/2, the partial-stick share plus max(n/8, 8), and the rest; piece [a, b) of k points
+    is a + i (b - a)/k; a piece of zero length gets no point, any other at least one;
+    then pi - tau0."""
+    half, end = n // 2, math.pi - c.tau0
+    if c.psi <= 1:
+        pieces = [(c.tau0, math.pi / 2, half), (math.pi / 2, end, n - half)]
+    else:
+        share = round((c.tau1 - math.pi / 2) / (end - math.pi / 2) * (n - half))
+        pieces = [(c.tau0, math.pi / 2, half), (math.pi / 2, c.tau1, share + max(n // 8, 8)),
+                  (c.tau1, end, n - half - share)]
+    out = []
+    for a, b, k in pieces:
+        k = max(k, 1) if b > a else 0
+        out += [i * ((b - a) / k) + a for i in range(k)]
+    return [*out, end]
+
+
+@pytest.mark.parametrize("n", [2, 3, 9, 200, 1001])
+def test_tau_grid_is_the_documented_rule(n: int) -> None:
+    for psi in PSIS:
+        for tau0 in TAU0S:
+            c = Contact(psi, tau0)
+            grid = c.tau_grid(n)
+            assert grid.tolist() == _grid_as_documented(c, n), (psi, tau0)
+            assert (np.diff(grid) >= 0).all()
+            assert curve(psi, tau0, n)[0][0].tolist() == grid.tolist()
+
+
 @pytest.mark.parametrize(("psi", "tau0"), [(0.4, math.pi / 6), (1.0, -0.9), (2.414, 1.5),
                                            (1e6, -1.5707), (1 + 1e-12, 1.5)])
 def test_curve_is_contact_in_one_call(psi: float, tau0: float) -> None:
