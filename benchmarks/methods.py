@@ -14,11 +14,12 @@ calls in a loop until a window lasts at least WINDOW seconds, REPEATS such windo
 best window's time per call. Each kernel is called once before (compilation or loading
 from numba's disk cache is excluded); that first call is reported apart, and the cold
 compile time of every kernel is measured in a subprocess with an empty numba cache.
-
-Errors: against core (err_T = max |T - T_core| / T0 on the method's own times, impulse
-error against core's eq 41); relative errors divide by max |T_core| and by the impulse
-ratio. err = max of the two absolute errors, err_rel of the two relative ones. The
-closed form itself is checked against 50-digit mpmath evaluations of eqs 39 and 41.
+The sweep times every rung of every ladder; the ratios of the tables come from a second
+timing (``head_to_head``): per case, the fastest peer at each target, the closed form on
+200 points and the closed form on as many points as that peer returns, their windows
+interleaved so that a burst of load on the shared machine hits all of them alike.
+``call_floors`` times numba functions that only return new arrays of each method's
+size: the cost of the call itself, under any method with that interface.
 
 Cases: psi in {0.4, 1, 2.414, 28.35, 1000} x tau0 in {pi/6, 1.5, -0.9}, in four regimes:
 "psi <= 1" and "psi > 1" (tau0 = pi/6), "grazing" (tau0 = 1.5), "preload" (tau0 = -0.9).
@@ -26,6 +27,9 @@ Cases: psi in {0.4, 1, 2.414, 28.35, 1000} x tau0 in {pi/6, 1.5, -0.9}, in four 
 Outputs (benchmarks/results/, or results/quick/ with --quick):
   speed_accuracy.csv    one row per run (method, resolution, steps, case, time, errors)
   speed_accuracy.html   Bokeh chart: per regime or case, time against error, Pareto fronts
+  head_to_head.csv      per case, error kind and target: the fastest peer, the closed form
+                        on 200 points and on as many points as the peer, timed interleaved
+  call_floors.json      the cost of a numba call returning new arrays of each method's size
   methods_table.md      per case and per regime: fastest peer reaching each error target
   compile_times.json    cold compile and cached first-call time of each kernel
 
@@ -79,8 +83,10 @@ LADDERS: dict[str, list[tuple[int, int | None]]] = {
     "gauss_legendre": [(n, None) for n in (4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048)],
 }
 QUICK_LADDERS = {k: v[::3] for k, v in LADDERS.items()}
-FIELDS = ["method", "resolution", "steps", "psi", "tau0", "regime", "wall_time", "err_T",
-          "err_impulse", "err_b", "err", "err_rel"]
+FIELDS = ["method", "resolution", "steps", "psi", "tau0", "regime", "points", "wall_time",
+          "err_T", "err_impulse", "err_b", "err", "err_rel"]
+HEAD_FIELDS = ["psi", "tau0", "regime", "kind", "threshold", "peer", "peer_points",
+               "peer_time", "cf_time", "cf_n", "cf_points", "cf_n_time"]
 
 
 def regime(psi: float, tau0: float) -> str:
@@ -103,21 +109,20 @@ def closed_form(psi: float, tau0: float):
 
 def job(name: str, psi: float, tau0: float, resolution: int, steps: int | None
         ) -> Callable[[], tuple]:
-    """The call that computes one contact with ``name``: returns (tau, T, b, ratio)."""
+    """The call that computes one contact with ``name``, and nothing else: the function
+    users call (``core.curve``) or the method's kernel, with its arguments bound. What it
+    returns differs per method; ``as_result`` turns it into (tau, T, b, ratio)."""
     if name == "closed_form":
-        return lambda: closed_form(psi, tau0)
+        return lambda: curve(psi, tau0, CLOSED_FORM_POINTS)
     if name == "mdr":
-        return lambda: mdr.contact(psi, tau0, resolution, steps)[:4]
+        return lambda: mdr.contact(psi, tau0, resolution, steps)
     if name == "annulus":
         m = annulus.default_steps(resolution) if steps is None else steps
-        return lambda: annulus.contact(psi, tau0, annulus._compliance(resolution), m)
+        C = annulus._compliance(resolution)  # built once per ring count, then cached
+        return lambda: annulus.contact(psi, tau0, C, m)
     if name in dem.MODELS:
         model = dem.MODELS[name]
-
-        def run_dem():
-            tau, T, ratio = dem.contact(model, psi, tau0, resolution)
-            return tau, T, None, ratio
-        return run_dem
+        return lambda: dem.contact(model, psi, tau0, resolution)
     if name == "quad":
         return lambda: quadrature.solve_quad(Params(psi, tau0), resolution)
     if name == "gauss_legendre":
@@ -125,9 +130,24 @@ def job(name: str, psi: float, tau0: float, resolution: int, steps: int | None
     raise KeyError(name)
 
 
-def per_call(fn: Callable[[], object], window: float = WINDOW, repeats: int = REPEATS
-             ) -> float:
-    """Seconds per call: loops of k calls lasting >= ``window``, best of ``repeats``."""
+def as_result(name: str, out: tuple) -> tuple:
+    """The output of ``job(name, ...)()`` as (tau, T, b or None, impulse ratio)."""
+    if name == "closed_form":
+        (tau, T, b), ratio = out
+        return tau, T, b, ratio
+    if name in dem.MODELS:
+        tau, T, ratio = out
+        return tau, T, None, ratio
+    return out[:4]
+
+
+def calls_per_window(fn: Callable[[], object], window: float = WINDOW) -> int:
+    """The number k of calls of ``fn`` that lasts at least ``window`` seconds, the larger
+    of two calibrations (a burst of load during one would make k too small)."""
+    return max(_calibrate(fn, window), _calibrate(fn, window))
+
+
+def _calibrate(fn: Callable[[], object], window: float) -> int:
     k = 1
     while True:
         start = time.perf_counter()
@@ -135,15 +155,53 @@ def per_call(fn: Callable[[], object], window: float = WINDOW, repeats: int = RE
             fn()
         elapsed = time.perf_counter() - start
         if elapsed >= window:
-            break
+            return k
         k = max(2 * k, int(k * 1.2 * window / max(elapsed, 1e-9)))
-    best = elapsed / k
-    for _ in range(repeats - 1):
-        start = time.perf_counter()
-        for _ in range(k):
-            fn()
-        best = min(best, (time.perf_counter() - start) / k)
+
+
+def one_window(fn: Callable[[], object], k: int) -> float:
+    """Seconds per call over one loop of k calls."""
+    start = time.perf_counter()
+    for _ in range(k):
+        fn()
+    return (time.perf_counter() - start) / k
+
+
+def per_call(fn: Callable[[], object], window: float = WINDOW, repeats: int = REPEATS
+             ) -> float:
+    """Seconds per call: loops of k calls lasting >= ``window``, best of ``repeats``."""
+    k = calls_per_window(fn, window)
+    return min(one_window(fn, k) for _ in range(repeats))
+
+
+def head_to_head(fns: list[Callable[[], object]], window: float = WINDOW,
+                 repeats: int = REPEATS) -> list[float]:
+    """``per_call`` of each of ``fns``, their windows interleaved (f1, f2, ..., f1, f2,
+    ...) so that a burst of load on the shared machine hits all of them alike."""
+    ks = [calls_per_window(fn, window) for fn in fns]
+    best = [np.inf] * len(fns)
+    for _ in range(repeats):
+        for i, (fn, k) in enumerate(zip(fns, ks, strict=True)):
+            best[i] = min(best[i], one_window(fn, k))
     return best
+
+
+def closed_form_points(psi: float, tau0: float, n: int) -> int:
+    """The number of times of ``core.curve(psi, tau0, n)``."""
+    return int(Contact(psi, tau0).tau_grid(n).size)
+
+
+def closed_form_n_for(psi: float, tau0: float, points: int) -> int:
+    """The least n (>= 2) for which ``core.curve(psi, tau0, n)`` returns at least
+    ``points`` times: the closed form with as many output points as a peer."""
+    lo, hi = 2, max(2, points)
+    while lo < hi:  # the grid size is non-decreasing in n
+        mid = (lo + hi) // 2
+        if closed_form_points(psi, tau0, mid) >= points:
+            hi = mid
+        else:
+            lo = mid + 1
+    return lo
 
 
 # ------------------------------------------------------------------ errors
@@ -255,15 +313,17 @@ def run_all(ladders: dict[str, list[tuple[int, int | None]]]) -> list[dict]:
         fn()
         rows.append(dict(method="closed_form", resolution=CLOSED_FORM_POINTS, steps=0,
                          psi=psi, tau0=tau0, regime=regime(psi, tau0),
+                         points=closed_form_points(psi, tau0, CLOSED_FORM_POINTS),
                          wall_time=per_call(fn), **closed_form_errors(psi, tau0)))
         for name, ladder in ladders.items():
             for resolution, steps in ladder:
                 fn = job(name, psi, tau0, resolution, steps)
-                out = fn()  # warm-up (and the result whose errors are measured)
+                out = as_result(name, fn())  # warm-up (and the result measured)
                 wall = per_call(fn)
                 rows.append(dict(method=name, resolution=resolution, steps=steps or 0,
                                  psi=psi, tau0=tau0, regime=regime(psi, tau0),
-                                 wall_time=wall, **run_errors(name, resolution, out, c)))
+                                 points=len(out[0]), wall_time=wall,
+                                 **run_errors(name, resolution, out, c)))
     return rows
 
 
@@ -297,14 +357,115 @@ def per_case(rows: list[dict], key: str, methods: list[str]) -> list[dict]:
     return out
 
 
-def per_regime(cases: list[dict]) -> dict[str, dict[float, dict]]:
+KINDS = (("err_rel", "relative"), ("err", "absolute"))
+
+
+def head_to_head_rows(rows: list[dict]) -> list[dict]:
+    """The ratios of the tables: per case, error kind and threshold, the fastest peer of
+    the sweep reaching it, timed again interleaved (``head_to_head``) with the closed
+    form on 200 points and with the closed form on at least as many points as that
+    peer returns (``core.curve(psi, tau0, n)``, n from ``closed_form_n_for``)."""
+    out = []
+    cases = [(r["psi"], r["tau0"]) for r in rows if r["method"] == "closed_form"]
+    for psi, tau0 in tqdm(cases, desc="head to head", unit="case"):
+        winners: dict[str, dict] = {}
+        picks = {}
+        for key, kind in KINDS:
+            for thr in THRESHOLDS:
+                best = fastest(rows, PEERS, (psi, tau0), key, thr)
+                picks[kind, thr] = best
+                if best is not None:
+                    winners[label(best)] = best
+        ns = sorted({closed_form_n_for(psi, tau0, w["points"]) for w in winners.values()})
+        fns = [job("closed_form", psi, tau0, 0, None)]
+        fns += [lambda p=psi, t=tau0, n=n: curve(p, t, n) for n in ns]
+        fns += [job(w["method"], psi, tau0, w["resolution"], w["steps"] or None)
+                for w in winners.values()]
+        for fn in fns:
+            fn()
+        times = head_to_head(fns)
+        cf_time = times[0]
+        cf_n = dict(zip(ns, times[1:1 + len(ns)], strict=True))
+        peer = dict(zip(winners, times[1 + len(ns):], strict=True))
+        for (kind, thr), best in picks.items():
+            row = dict(psi=psi, tau0=tau0, regime=regime(psi, tau0), kind=kind,
+                       threshold=thr, cf_time=cf_time, peer="", peer_points=0,
+                       peer_time=float("nan"), cf_n=0, cf_points=0, cf_n_time=float("nan"))
+            if best is not None:
+                n = closed_form_n_for(psi, tau0, best["points"])
+                row.update(peer=label(best), peer_points=best["points"],
+                           peer_time=peer[label(best)], cf_n=n,
+                           cf_points=closed_form_points(psi, tau0, n), cf_n_time=cf_n[n])
+            out.append(row)
+    return out
+
+
+def cases_of(head: list[dict], kind: str) -> list[dict]:
+    """Per case: the closed form's time and, per threshold, the peer reaching it with its
+    time and the two ratios (peer time over the closed form's on 200 points, and over
+    the closed form's on as many points as the peer), all from one interleaved timing."""
+    out: dict[tuple[float, float], dict] = {}
+    for r in head:
+        if r["kind"] != kind:
+            continue
+        entry = out.setdefault((r["psi"], r["tau0"]), dict(
+            psi=r["psi"], tau0=r["tau0"], regime=r["regime"], cf_time=r["cf_time"],
+            best={}))
+        entry["best"][r["threshold"]] = None if not r["peer"] else dict(
+            run=r["peer"], points=int(r["peer_points"]), time=r["peer_time"],
+            ratio=r["peer_time"] / r["cf_time"], cf_points=int(r["cf_points"]),
+            cf_n_time=r["cf_n_time"], ratio_points=r["peer_time"] / r["cf_n_time"])
+    return list(out.values())
+
+
+def call_floors() -> dict[str, float]:
+    """Seconds per call of numba functions that do nothing but return what a method
+    returns (fresh arrays of its size), interleaved: the floor under any method that
+    returns its results as new arrays from one Python call."""
+    from numba import njit
+
+    @njit
+    def scalars(a, b, n):
+        return a
+
+    @njit
+    def like_dem(a, b, n):
+        return np.empty(n + 1), np.empty(n + 1), a
+
+    @njit
+    def like_curve(a, b, n):
+        return np.empty((3, n)), a
+
+    from core import kernels
+
+    calls = {
+        "a numba call with three scalar arguments, returning a float": (scalars, 10),
+        "returning two new arrays of 11 floats and a float (a 10-step DEM rule)":
+            (like_dem, 10),
+        "returning a new 3 x 11 array and a float (the closed form on 11 points)":
+            (like_curve, 11),
+        "returning a new 3 x 226 array and a float (the closed form on 200 points)":
+            (like_curve, 226),
+    }
+    fns = [lambda f=f, n=n: f(0.5, 0.5, n) for f, n in calls.values()]
+    psi, tau0 = 2.414, np.pi / 6
+    calls["the closed form at psi = 2.414, tau0 = pi/6: core.curve(psi, tau0, 200)"] = None
+    fns.append(lambda: curve(psi, tau0, CLOSED_FORM_POINTS))
+    calls["the same without the argument checks: core.kernels.curve(psi, tau0, 200)"] = None
+    fns.append(lambda: kernels.curve(psi, tau0, CLOSED_FORM_POINTS))
+    for fn in fns:
+        fn()
+    return dict(zip(calls, head_to_head(fns), strict=True))
+
+
+def per_regime(cases: list[dict], ratio: str = "ratio") -> dict[str, dict[float, dict]]:
     out: dict[str, dict[float, dict]] = {}
     for reg in [*REGIMES, "all"]:
         sel = [c for c in cases if reg in ("all", c["regime"])]
         out[reg] = {}
         for thr in THRESHOLDS:
             hits = [c["best"][thr] for c in sel if c["best"][thr] is not None]
-            ratios = [h["ratio"] for h in hits]
+            ratios = [h[ratio] for h in hits]
             out[reg][thr] = dict(
                 median=float(np.median(ratios)) if ratios else float("nan"),
                 min=float(np.min(ratios)) if ratios else float("nan"),
@@ -318,47 +479,66 @@ def fmt_time(t: float) -> str:
     return f"{t * 1e6:.3g} us" if t < 1e-3 else f"{t * 1e3:.3g} ms"
 
 
-def markdown(rows: list[dict], compile_info: dict | None) -> str:
+def markdown(rows: list[dict], head: list[dict], compile_info: dict | None,
+             floors: dict | None) -> str:
     lines = ["# Speed against accuracy, like for like", "",
              "One contact from (psi, tau0): T on the method's own times and the impulse "
-             "ratio. Peers: numba kernels (MDR, annulus, DEM rules) called from Python; "
-             "closed form: `core.curve` (one compiled call: T and b on 200 points, impulse "
-             "ratio). "
+             "ratio. Peers: numba kernels (MDR, annulus, DEM rules) called from Python "
+             "with scalar arguments, no argument checks; closed form: `core.curve` (one "
+             "compiled call, its arguments checked: T and b on `tau_grid(n)`, impulse "
+             "ratio). The sweep over every ladder finds, per case and target, the fastest "
+             "peer reaching it; that peer and the closed form are then timed again "
+             "interleaved, and the tables give those times. "
              f"Every time is the best of {REPEATS} windows of at least {WINDOW * 1e3:g} ms "
-             "of repeated calls, after a warm-up call. ratio = time of the fastest peer "
-             "reaching the target / time of the closed form, same case, same run "
-             "(> 1: the closed form is faster).", ""]
-    for key, kind in (("err_rel", "relative"), ("err", "absolute")):
-        cases = per_case(rows, key, PEERS)
+             "of repeated calls, after a warm-up call. ratio = peer time / closed-form "
+             "time (> 1: the closed form is faster): **ratio** against `core.curve(psi, "
+             f"tau0, {CLOSED_FORM_POINTS})`, **same points** against `core.curve(psi, "
+             "tau0, n)` with the least n that returns at least as many times as the peer "
+             "(pts).", ""]
+    for key, kind in KINDS:
+        cases = cases_of(head, kind)
+        errs = {(r["psi"], r["tau0"]): r[key] for r in rows if r["method"] == "closed_form"}
         lines += [f"## Per case, {kind} error", "",
-                  "| psi | tau0 | regime | closed form | its error | "
-                  + " | ".join(f"{t:.0e}: fastest peer, time, ratio" for t in THRESHOLDS)
+                  "| psi | tau0 | regime | closed form (200) | its error | "
+                  + " | ".join(f"{t:.0e}: fastest peer (pts), time, ratio, same points"
+                               for t in THRESHOLDS)
                   + " |", "|---:|---:|---|---:|---:|" + "---|" * len(THRESHOLDS)]
         for c in cases:
             cells = []
             for thr in THRESHOLDS:
                 b = c["best"][thr]
                 cells.append("not reached" if b is None else
-                             f"{b['run']}, {fmt_time(b['time'])}, {b['ratio']:.3g}")
+                             f"{b['run']} ({b['points']}), {fmt_time(b['time'])}, "
+                             f"**{b['ratio']:.3g}**, {b['ratio_points']:.3g}")
             lines.append(f"| {c['psi']:g} | {c['tau0']:.4g} | {c['regime']} | "
-                         f"{fmt_time(c['cf_time'])} | {c['cf_err']:.1e} | "
+                         f"{fmt_time(c['cf_time'])} | {errs[c['psi'], c['tau0']]:.1e} | "
                          + " | ".join(cells) + " |")
-        lines += ["", f"## Per regime, {kind} error: ratio over the cases (median, "
-                  "smallest, largest)", "",
-                  "| regime | " + " | ".join(f"{t:.0e}" for t in THRESHOLDS) + " |",
-                  "|---|" + "---:|" * len(THRESHOLDS)]
-        for reg, by_thr in per_regime(cases).items():
-            cells = []
-            for thr in THRESHOLDS:
-                r = by_thr[thr]
-                if not r["reached"]:
-                    cells.append("not reached")
-                    continue
-                cells.append(f"{r['median']:.3g} ({r['min']:.3g}-{r['max']:.3g})"
-                             + ("" if r["reached"] == r["cases"]
-                                else f", {r['reached']}/{r['cases']} cases")
-                             + f"; {', '.join(r['winners'])}")
-            lines.append(f"| {reg} | " + " | ".join(cells) + " |")
+        for ratio, what in (("ratio", f"against the closed form on {CLOSED_FORM_POINTS} "
+                                      "points"),
+                            ("ratio_points", "against the closed form on as many points "
+                                             "as the peer")):
+            lines += ["", f"## Per regime, {kind} error, {what}: ratio over the cases "
+                      "(median, smallest, largest)", "",
+                      "| regime | " + " | ".join(f"{t:.0e}" for t in THRESHOLDS) + " |",
+                      "|---|" + "---:|" * len(THRESHOLDS)]
+            for reg, by_thr in per_regime(cases, ratio).items():
+                cells = []
+                for thr in THRESHOLDS:
+                    r = by_thr[thr]
+                    if not r["reached"]:
+                        cells.append("not reached")
+                        continue
+                    cells.append(f"{r['median']:.3g} ({r['min']:.3g}-{r['max']:.3g})"
+                                 + ("" if r["reached"] == r["cases"]
+                                    else f", {r['reached']}/{r['cases']} cases")
+                                 + f"; {', '.join(r['winners'])}")
+                lines.append(f"| {reg} | " + " | ".join(cells) + " |")
+        lines.append("")
+    if floors:
+        lines += ["## The cost of the call itself (numba functions that only return "
+                  "new arrays, timed interleaved in the same run)", "",
+                  "| call | time |", "|---|---:|"]
+        lines += [f"| {k} | {fmt_time(v)} |" for k, v in floors.items()]
         lines.append("")
     checks = per_case(rows, "err_rel", CHECKS)
     lines += ["## Quadrature of core's T (check of eq 41, not a peer), relative error", "",
@@ -567,20 +747,27 @@ def main(argv: list[str] | None = None) -> None:
     if args.quick:
         out = out / "quick"
     out.mkdir(parents=True, exist_ok=True)
-    compile_info = None
+    compile_info = floors = None
     if args.compile_times:
         (out / "compile_times.json").write_text(json.dumps(compile_times(), indent=1) + "\n")
         args.replot = True
     if args.replot:
         rows = read_csv(out / "speed_accuracy.csv")
+        head = read_csv(out / "head_to_head.csv")
         if (out / "compile_times.json").exists():
             compile_info = json.loads((out / "compile_times.json").read_text())
+        if (out / "call_floors.json").exists():
+            floors = json.loads((out / "call_floors.json").read_text())
     else:
         compile_info = compile_times()
         (out / "compile_times.json").write_text(json.dumps(compile_info, indent=1) + "\n")
         rows = run_all(ladders)
         write_csv(rows, out / "speed_accuracy.csv", FIELDS)
-    text = markdown(rows, compile_info)
+        head = head_to_head_rows(rows)
+        write_csv(head, out / "head_to_head.csv", HEAD_FIELDS)
+        floors = call_floors()
+        (out / "call_floors.json").write_text(json.dumps(floors, indent=1) + "\n")
+    text = markdown(rows, head, compile_info, floors)
     (out / "methods_table.md").write_text(text)
     chart(rows, out / "speed_accuracy.html")
     print(text)

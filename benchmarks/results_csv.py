@@ -5,8 +5,8 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
-TEXT = {"method", "regime"}
-INTEGER = {"resolution", "steps"}
+TEXT = {"method", "regime", "kind", "peer"}
+INTEGER = {"resolution", "steps", "points", "peer_points", "cf_n", "cf_points"}
 
 
 def _value(key: str, text: str):
