@@ -253,8 +253,8 @@ class MethodsScene:
         if data is None or "err" not in data or "wall_time" not in data:
             return None
         fig = new_figure("Speed against accuracy (benchmarks/results)", "wall time (s)",
-                      "max error of T / T₀", x_axis_type="log", y_axis_type="log",
-                      x_range=Range1d(1e-5, 10), y_range=Range1d(1e-17, 10))
+                         "max error of T / T₀", x_axis_type="log", y_axis_type="log",
+                         x_range=Range1d(1e-7, 10), y_range=Range1d(1e-17, 10))
         methods = list(dict.fromkeys(data["method"].tolist()))
         for i, name in enumerate(methods):
             sel = (data["method"] == name) & (data["err"] > 0) & (data["wall_time"] > 0)
@@ -289,10 +289,10 @@ class MethodsScene:
         mapper = LogColorMapper(palette=Viridis256, low=1e-16, high=1.0)
         dx = float(np.min(np.diff(np.log10(psis)))) if psis.size > 1 else 1.0
         fig = new_figure("Stability map: error over ψ (x) and τ₀ (rows) per method", "log₁₀ ψ",
-                      "method", x_range=Range1d(math.log10(psis[0]) - dx,
-                                               math.log10(psis[-1]) + dx),
-                      y_range=Range1d(0, len(methods)), height=60 + 34 * len(methods),
-                      tools=TOOLS + ",hover", tooltips=[("error", "@err{0.0e}")])
+                         "method", x_range=Range1d(math.log10(psis[0]) - dx,
+                                                  math.log10(psis[-1]) + dx),
+                         y_range=Range1d(0, len(methods)), height=60 + 34 * len(methods),
+                         tools=TOOLS + ",hover", tooltips=[("error", "@err{0.0e}")])
         fig.rect("x", "y", width=dx, height=1 / rows, source=src,
                  fill_color={"field": "err", "transform": mapper}, line_color=None)
         fig.yaxis.ticker = [i + 0.5 for i in range(len(methods))]

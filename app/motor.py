@@ -355,8 +355,8 @@ class MotorScene(pn.viewable.Viewer):
         # the rod, to scale (x and y in mm); the range follows an invisible frame only,
         # so that moving the rotor leaves it as it is
         fig = new_figure("Rod and rotor", "x (mm)", "y (mm)", match_aspect=True,
-                      x_range=DataRange1d(), y_range=DataRange1d(), width=900, height=300,
-                      sizing_mode="scale_width")
+                         x_range=DataRange1d(), y_range=DataRange1d(), width=900, height=300,
+                         sizing_mode="scale_width")
         frame = fig.scatter("x", "y", source=self.frame_source, alpha=0.0, size=1)
         fig.x_range.renderers = fig.y_range.renderers = [frame]
         fig.vstrip("left", "right", source=self.invalid_source, fill_color=INVALID_COLOR,
@@ -382,7 +382,7 @@ class MotorScene(pn.viewable.Viewer):
         self.rod_figure = fig
 
         fig = new_figure("Stall thrust along the rod (rotor held)", "x₀ (mm)",
-                      "stall thrust (mN, + along +x)")
+                         "stall thrust (mN, + along +x)")
         fig.vstrip("left", "right", source=self.invalid_source, fill_color=INVALID_COLOR,
                    fill_alpha=0.3, line_color=None, legend_label="contact never opens")
         fig.line("x_mm", "thrust_mN", source=self.thrust_source, color=THRUST_COLOR,
@@ -399,7 +399,7 @@ class MotorScene(pn.viewable.Viewer):
 
         speed_range = Range1d(0, 1)
         fig = new_figure("Thrust against rotor speed at x₀", "rotor speed V (mm/s)",
-                      "thrust (mN, along the drive)", x_range=speed_range)
+                         "thrust (mN, along the drive)", x_range=speed_range)
         fig.line("V_mm_s", "thrust_mN", source=self.speed_source, color=THRUST_COLOR,
                  line_width=3)
         fig.scatter("V_mm_s", "thrust_mN", source=self.marks_source, size=12,
@@ -407,7 +407,7 @@ class MotorScene(pn.viewable.Viewer):
         style_figure(fig)
         self.speed_figure = fig
         fig = new_figure("Efficiency against rotor speed at x₀", "rotor speed V (mm/s)",
-                      "efficiency (%)", x_range=speed_range)
+                         "efficiency (%)", x_range=speed_range)
         fig.line("V_mm_s", "efficiency_pct", source=self.speed_source,
                  color=EFFICIENCY_COLOR, line_width=3)
         fig.scatter("V_mm_s", "efficiency_pct", source=self.marks_source, size=12,

@@ -50,8 +50,8 @@ class SmallMultiples:
             self.sources[key].data = {k: v[0] for k, v in
                                       self.traction.profiles(c, np.array([p.tau])).items()}
             fig = new_figure(panel_title(key), "r / a*", "τᵤ / (μ p*)", height=230,
-                          min_width=220, x_range=self.traction.figure.x_range.clone(),
-                          y_range=self.traction.figure.y_range.clone())
+                             min_width=220, x_range=self.traction.figure.x_range.clone(),
+                             y_range=self.traction.figure.y_range.clone())
             source = self.sources[key]
             fig.varea("r", "stick_lo", "stick_hi", source=source, fill_color=STICK_COLOR,
                       fill_alpha=0.25)

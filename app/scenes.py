@@ -260,7 +260,7 @@ class DiscScene(Scene):
                           "label": ["stick", "slip"]})
         # no legend: a legend built from the data would repaint the whole plot per frame
         fig = new_figure("Contact disc (top view)", "x / a*", "y / a*", match_aspect=True,
-                      sizing_mode="fixed", width=350, height=350)
+                         sizing_mode="fixed", width=350, height=350)
         self.envelope = fig.circle(0, 0, radius=1.0, fill_alpha=0, line_dash="dotted",
                                    line_color="grey", line_width=2)
         fig.annulus("x", "y", inner_radius="inner", outer_radius="outer", source=self.source,
@@ -495,7 +495,7 @@ class RadiiScene(CurveScene):
         """Fig. 4a, built on first use: u_z0 / H against tau, the level h / H above which
         the spheres touch, and the approach scale H - h."""
         fig = new_figure("Height of the lower sphere u_z0 / H (Fig. 4a)", "τ = ωt (rad)",
-                      "u_z0 / H", height=220, x_range=Range1d(0.0, math.pi))
+                         "u_z0 / H", height=220, x_range=Range1d(0.0, math.pi))
         fig.line("tau", "uz", source=self.drive, color="black", line_width=2)
         fig.line("tau", "touch", source=self.drive, color="#D55E00", line_width=4,
                  legend_label="in contact")
@@ -644,7 +644,7 @@ class ImpulseScene(Scene):
     def _make(self, axis: str):
         x_range = Range1d(*self.LOG_RANGE) if axis == "log" else Range1d(0.0, self.LINEAR_MAX)
         fig = new_figure("Tangential impulse T_imp / (μ P_imp)", "ψ", "T_imp / (μ P_imp)",
-                      x_axis_type=axis, x_range=x_range)
+                         x_axis_type=axis, x_range=x_range)
         fig.line("psi", "ratio", source=self.source, color="black", line_width=3)
         fig.scatter("psi", "ratio", source=self.points, size=11, color="white",
                     line_color="black", line_width=2)
