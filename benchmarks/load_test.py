@@ -6,7 +6,9 @@ Each simulated user speaks Bokeh's websocket protocol, as BokehJS does in a brow
    balancer's sticky cookie is honoured), the session token is read from the page;
 2. the websocket ``/main/ws`` with that token and the page's own ``Origin``; after the
    server's ``ACK`` it sends ``PULL-DOC-REQ`` and finds, in the document it gets, the ψ
-   slider's model and the ``ColumnDataSource`` named ``force``;
+   slider's model and the ``ColumnDataSource`` named ``force``; then it sends the
+   ``document_ready`` event, as BokehJS does once it has rendered the page (Panel treats
+   a session as loaded from then on);
 3. every ``--interval`` seconds (0.3 s; each session with its own random phase) it sends
    a ``PATCH-DOC`` that sets the slider's ``value`` to a new ψ, and times how long the
    server takes to send the ``PATCH-DOC`` that changes the ``force`` source's data.
@@ -63,6 +65,10 @@ sys.path.insert(0, str(ROOT / "tests" / "app"))
 from explorer_browser import free_port  # noqa: E402
 from explorer_browser import wait_for_http as wait_http  # noqa: E402
 
+#: The event BokehJS sends when the page's document is rendered (a PATCH-DOC event).
+DOCUMENT_READY = {"kind": "MessageSent", "msg_type": "bokeh_event",
+                  "msg_data": {"type": "event", "name": "document_ready",
+                               "values": {"type": "map"}}}
 TOKEN = re.compile(r'\\?"token\\?":\s*\\?"([^"\\]+)')
 PSI_LABEL = re.compile(r"^\s*ψ(\s|=|$)")
 
@@ -210,6 +216,9 @@ class Session:
                                                                       self.slider_name)
         self.force_ref = f'"model":{{"id":"{self.force}"}}'
         self.value = None
+        # what BokehJS sends once it has rendered the document: Panel counts the session
+        # as loaded from then on (and runs its on-load callbacks)
+        await self._send("PATCH-DOC", {"events": [DOCUMENT_READY]})
         self.alive = True
         self._reader = asyncio.create_task(self._read_loop())
 
