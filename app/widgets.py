@@ -7,7 +7,11 @@ parse function).  A refused entry changes nothing and the box shows the last goo
 again; a good value outside the slider's range widens the range to show it.
 
 Built from Panel's public widgets only, kept in step on the server: the slider's moves
-write the box, the box's entries write the slider, both through `value`.
+write the box, the box's entries write the slider, both through `value`.  A value from
+the browser is applied inside `panel.io.hold`: everything it changes (the box, and what
+watches `value`: the plots, the readout) goes to the browser as one message.  Bokeh
+builds each message's serializer over every model of the document, so a move whose
+changes went out as three messages cost more server CPU (`docs/deploy.md`, "Load").
 
 `LabelledCheckbox` is a check box whose label names it for a screen reader.
 """
@@ -19,6 +23,7 @@ from collections.abc import Callable
 
 import panel as pn
 import param
+from panel.io import hold
 
 #: Style of the message under a box (dark red on white: 7.7:1 contrast).
 ERROR_STYLE = {"color": "#a4161a", "font-size": "0.9em", "margin-top": "0"}
@@ -74,7 +79,10 @@ class ExactSlider(pn.viewable.Viewer):
         return f"{v:.{self._digits}g}"
 
     def _on_slider(self, event: param.parameterized.Event) -> None:
-        self.value = event.new
+        # everything the move changes (this box, the plots, the readout) goes to the
+        # browser in one message
+        with hold():
+            self.value = event.new
 
     def _on_entry(self, event: param.parameterized.Event) -> None:
         text = event.new.strip()
@@ -89,7 +97,8 @@ class ExactSlider(pn.viewable.Viewer):
         self.error = ""
         if v == self.value:
             self._show_later(self.text(v))
-        self.value = v
+        with hold():
+            self.value = v
 
     def _show_later(self, text: str) -> None:
         """Show `text` in the box once the browser's entry has been handled (Panel sends

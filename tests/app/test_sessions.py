@@ -141,3 +141,37 @@ def test_slider_moves_in_one_session_hold_no_more_python_memory(served) -> None:
 
     grown = asyncio.run(moves())
     assert grown < 100_000, f"1000 moves left {grown} bytes of Python objects behind"
+
+
+def test_a_slider_move_comes_back_as_one_message(served) -> None:
+    """A psi move from a loaded page (benchmarks/load_test.py's client sends
+    `document_ready`, as BokehJS does) comes back as ONE message holding both the psi
+    box's new text and the plots' new data (app/widgets.py applies the browser's value
+    under `hold`): Bokeh builds each message's serializer over the whole document."""
+    url, _ = served
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from load_test import Session
+
+    async def move() -> list[str]:
+        session = Session(url, AsyncHTTPClient(), 10.0, None)
+        await session.open()
+        session._reader.cancel()  # read the replies here instead
+        try:
+            while True:  # what the page's load sends, until a quiet 0.5 s
+                try:
+                    await asyncio.wait_for(session._read(), 0.5)
+                except TimeoutError:
+                    break
+            await session.move()
+            patches = []
+            while not any(session.force_ref in p for p in patches):
+                header, content = await asyncio.wait_for(session._read(), 10)
+                if header["msgtype"] == "PATCH-DOC":
+                    patches.append(content)
+            return patches
+        finally:
+            session.close()
+
+    patches = asyncio.run(move())
+    assert len(patches) == 1, f"a move came back as {len(patches)} messages"
+    assert '"attr":"value_input"' in patches[0]  # the psi box's text, with the plots
