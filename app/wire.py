@@ -4,10 +4,17 @@ Bokeh sends each numpy column of a ColumnDataSource change as a binary buffer of
 own, after the message: two websocket frames per column (a reference, then the bytes).
 A psi move changes 19 float columns (about 45 kB), so the browser took ~40 frames,
 each a task of its own, to receive one update.  An `InlineColumn` serialises itself
-into the message (gzip + base64 at BOKEH_COMPRESSION_LEVEL: the representation Bokeh
-uses when buffers are not deferred), so the whole update is one message of three
-frames; the browser decodes the same float64 bytes, so the values it plots are bit for
-bit those computed here.
+into the message (base64 of a gzip stream: the representation Bokeh uses when buffers
+are not deferred, which BokehJS always gunzips), so the whole update is one message of
+three frames; the browser decodes the same float64 bytes, so the values it plots are
+bit for bit those computed here.
+
+The gzip stream is stored, not compressed (`COMPRESSION_LEVEL` 0): float64 curves hardly
+compress, and compressing them costs server CPU on every move.  Measured on the
+columns of one psi move (T(τ) and the traction profile, 21.9 kB of float64): Bokeh's
+default level 2 takes 0.42-0.47 ms for 24.1-24.4 kB of base64, level 0 takes 0.05 ms
+for 29.5 kB (+21 % bytes, -0.4 ms of server CPU per move;
+`python benchmarks/wire_cost.py`).
 
 Measured (paired A/B runs, two servers, moves alternated, 30 per arm): a psi move to
 all plots updated 118 -> 106, 128 -> 113 and 110 -> 103 ms median in three runs.
@@ -17,12 +24,24 @@ is a third larger.
 
 from __future__ import annotations
 
+import base64
+import gzip
 import sys
 from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
-from bokeh.core.serialization import Buffer, NDArrayRep, Serializable, Serializer
+from bokeh.core.serialization import NDArrayRep, Serializable, Serializer
+
+#: gzip level of the inline columns (0: stored; Bokeh's own default is 2).
+COMPRESSION_LEVEL = 0
+
+
+def encode(data: np.ndarray) -> str:
+    """The bytes of a contiguous array as BokehJS decodes an inline buffer: base64 of a
+    gzip stream (at `COMPRESSION_LEVEL`; mtime fixed, as Bokeh does, for equal output)."""
+    return base64.b64encode(gzip.compress(data.tobytes(), compresslevel=COMPRESSION_LEVEL,
+                                          mtime=1)).decode("ascii")
 
 
 class InlineColumn(np.ndarray, Serializable):
@@ -31,9 +50,7 @@ class InlineColumn(np.ndarray, Serializable):
     def to_serializable(self, serializer: Serializer) -> NDArrayRep:
         """Bokeh's ndarray representation with the bytes in the message itself."""
         data = np.ascontiguousarray(self, dtype=np.float64).view(np.ndarray)
-        # (a buffer's id only matters when it is sent apart from the message)
-        return NDArrayRep(type="ndarray",
-                          array={"type": "bytes", "data": Buffer("", data.data).to_base64()},
+        return NDArrayRep(type="ndarray", array={"type": "bytes", "data": encode(data)},
                           shape=list(data.shape), dtype="float64", order=sys.byteorder)
 
 
