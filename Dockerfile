@@ -65,8 +65,14 @@ LABEL org.opencontainers.image.title="zharii-explorer" \
 # websocket (list the public host[:port], or "*" on a classroom LAN).  NUM_PROCS=0:
 # one server process per CPU the container may use.  The root filesystem may be
 # read-only: the only writes are numba's compiled-kernel cache, under /tmp (a tmpfs
-# in docker/compose.yaml).
+# in docker/compose.yaml).  MALLOC_*: glibc's allocator keeps two heaps (not one per
+# thread) and hands freed memory above 128 KiB back to the system instead of keeping
+# it (the server's RSS under a long session of slider moves grows more slowly; see
+# docs/deploy.md, "Memory").
 ENV PATH=/opt/venv/bin:$PATH \
+    MALLOC_ARENA_MAX=2 \
+    MALLOC_TRIM_THRESHOLD_=131072 \
+    MALLOC_MMAP_THRESHOLD_=131072 \
     PYTHONUNBUFFERED=1 \
     PYTHONDONTWRITEBYTECODE=1 \
     HOME=/home/app \
