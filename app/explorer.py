@@ -606,6 +606,9 @@ class Explorer(param.Parameterized):
         if doc is not None:
             doc.template_variables["meta"] = layout.META
             pn.state.on_session_destroyed(self.close)
+            for slider in (self.psi_slider, self.tau0_slider, self.mu_slider,
+                           self.nu_slider, self.tau_slider):
+                slider.follow_browser(doc)  # (its moves without Panel's 50 ms wait)
         return page
 
     def close(self, session_context) -> None:

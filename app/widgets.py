@@ -23,7 +23,9 @@ from collections.abc import Callable
 
 import panel as pn
 import param
-from panel.io import hold
+from bokeh.document import Document
+from panel.io import hold, unlocked
+from panel.io.state import set_curdoc
 
 #: Style of the message under a box (dark red on white: 7.7:1 contrast).
 ERROR_STYLE = {"color": "#a4161a", "font-size": "0.9em", "margin-top": "0"}
@@ -55,6 +57,9 @@ class ExactSlider(pn.viewable.Viewer):
         super().__init__(value=value, start=min(start, value), end=max(end, value))
         self._parse = parse
         self._digits = digits
+        self._doc: Document | None = None  # the served document (`follow_browser`)
+        self._due = value  # the browser's last move, applied on the next turn
+        self._scheduled = False
         self._slider = pn.widgets.FloatSlider(
             value=value, start=self.start, end=self.end, step=step,
             show_value=False, sizing_mode="stretch_width", margin=(0, 8, 5, 8),
@@ -83,6 +88,39 @@ class ExactSlider(pn.viewable.Viewer):
         # browser in one message
         with hold():
             self.value = event.new
+
+    def follow_browser(self, doc: Document) -> None:
+        """Take the slider's moves in the served document `doc` as Bokeh delivers them.
+
+        Panel applies a widget change from the browser 50 ms after it arrives (it waits
+        to merge the moves of a drag), a wait in which the server is idle and which is
+        half of a move's time on screen.  Bokeh's own `on_change` of the slider's model
+        runs when the change arrives; the move is then applied on the event loop's next
+        turn (inside `hold`, so that all it changes goes out as one message; the moves
+        that arrive before that turn are merged into the last).  Panel's delayed
+        application finds the value already set and changes nothing.  The model is
+        found by its tag (`{name}-slider`); a slider without a name is left to Panel.
+        """
+        tags = self._slider.tags
+        model = doc.select_one({"tags": tags[0]}) if tags else None
+        if model is not None:
+            self._doc = doc
+            model.on_change("value", self._on_browser_value)
+
+    def _on_browser_value(self, attr: str, old: float, new: float) -> None:
+        if new == self.value:  # (the server's own change of the slider, echoed by Bokeh)
+            return
+        self._due = new
+        if not self._scheduled:
+            self._scheduled = True
+            self._doc.add_next_tick_callback(self._apply_due)
+
+    async def _apply_due(self) -> None:
+        """(A coroutine: Bokeh runs it on the event loop, where Panel sends all it
+        changes as one message; a plain function it would run on a worker thread.)"""
+        self._scheduled = False
+        with set_curdoc(self._doc), unlocked():
+            self.value = self._due
 
     def _on_entry(self, event: param.parameterized.Event) -> None:
         text = event.new.strip()
