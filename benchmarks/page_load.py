@@ -18,6 +18,10 @@ the most samples on their own (self).  The timing run is not profiled.
     .venv/bin/python benchmarks/page_load.py
     .venv/bin/python benchmarks/page_load.py --loads 20 --profile /tmp/page.txt --json out.json
 
+The server runs as the image runs it, with BOKEH_VALIDATE_DOC=false (Bokeh's checks of
+each new document, which only log; `make serve` and the tests keep them on);
+``--validate-doc`` measures it with them.
+
 Loopback only; every request has a timeout.
 """
 
@@ -150,14 +154,20 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--profile", type=Path, help="profile another --loads GETs with py-spy, "
                    "collapsed stacks written here")
     p.add_argument("--json", type=Path, help="write the results here")
+    p.add_argument("--validate-doc", action="store_true",
+                   help="let Bokeh validate each document (the image sets "
+                        "BOKEH_VALIDATE_DOC=false; `make serve` validates)")
     args = p.parse_args(argv)
     if args.loads < 1:
         p.error("--loads must be >= 1")
 
     res: dict = {"yardstick_before_us": round(yardstick(), 1)}
+    validate = "true" if args.validate_doc else "false"
+    os.environ["BOKEH_VALIDATE_DOC"] = validate  # (the server started below inherits it)
     proc, url = serve(1)
     loopback_only(url)
-    res["setup"] = f"python -m app.serve --num-procs 1 ({url}); {os.cpu_count()} CPUs"
+    res["setup"] = (f"BOKEH_VALIDATE_DOC={validate} python -m app.serve --num-procs 1 "
+                    f"({url}); {os.cpu_count()} CPUs")
     try:
         time.sleep(args.idle)
         res["first_load_ms"] = round(1e3 * get(url), 1)
