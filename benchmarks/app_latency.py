@@ -116,6 +116,25 @@ JS_IN_VIEW = """() => {
 }"""
 
 
+def focus_psi(page) -> list[str]:
+    """Focus the psi slider's handle of the explorer `page` (after 2 s of settling);
+    returns the names of the sources in view that a psi move changes."""
+    page.wait_for_timeout(2000)
+    page.locator(".noUi-handle").first.focus()  # psi
+    return page.evaluate(JS_VISIBLE_SOURCES, PSI_SOURCES)
+
+
+def step_psi(page, sources: list[str], i: int) -> float:
+    """Step the focused psi slider by keyboard (right for even i, left for odd) and
+    return the ms until every source of `sources` changed and was painted (nan after
+    15 s); then wait 250 ms."""
+    page.evaluate(JS_ARM, sources)
+    page.keyboard.press("ArrowRight" if i % 2 == 0 else "ArrowLeft")
+    ms = page.evaluate("window.__result")
+    page.wait_for_timeout(250)
+    return ms
+
+
 def measure(url: str, moves: int, seconds: float, width: int = 1600,
             height: int = 1400) -> dict[str, float]:
     """Run both measurements against the explorer at `url` in a `width` x `height` page."""
@@ -127,18 +146,9 @@ def measure(url: str, moves: int, seconds: float, width: int = 1600,
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path=path, args=CHROMIUM_ARGS)
         page, _ = open_explorer(browser, url, width=width, height=height)
-        page.wait_for_timeout(2000)
-        handle = page.locator(".noUi-handle").first  # psi
-        handle.focus()
-        sources = page.evaluate(JS_VISIBLE_SOURCES, PSI_SOURCES)
-        times = []
-        for i in range(moves + 2):
-            page.evaluate(JS_ARM, sources)
-            page.keyboard.press("ArrowRight" if i % 2 == 0 else "ArrowLeft")
-            ms = page.evaluate("window.__result")
-            if i >= 2:  # the first moves warm up caches on both sides
-                times.append(ms)
-            page.wait_for_timeout(250)
+        sources = focus_psi(page)
+        # (the first two moves warm up caches on both sides)
+        times = [step_psi(page, sources, i) for i in range(moves + 2)][2:]
         in_view = page.evaluate(JS_IN_VIEW)
         page.get_by_role("button", name="▶ Play").click()
         # the player starts when the contact's frames arrive

@@ -37,24 +37,14 @@ def profile(moves: int) -> tuple[list[float], dict]:
     with explorer_server() as url, sync_playwright() as p:
         browser = p.chromium.launch(executable_path=chromium_path(), args=CHROMIUM_ARGS)
         page, _ = open_explorer(browser, url, width=1600, height=1400)
-        page.wait_for_timeout(2000)
-        page.locator(".noUi-handle").first.focus()  # psi
-        sources = page.evaluate(app_latency.JS_VISIBLE_SOURCES, app_latency.PSI_SOURCES)
+        sources = app_latency.focus_psi(page)
         cdp = page.context.new_cdp_session(page)
         cdp.send("Profiler.enable")
         cdp.send("Profiler.setSamplingInterval", {"interval": 100})
-
-        def move(i: int) -> float:
-            page.evaluate(app_latency.JS_ARM, sources)
-            page.keyboard.press("ArrowRight" if i % 2 == 0 else "ArrowLeft")
-            ms = page.evaluate("window.__result")
-            page.wait_for_timeout(250)
-            return ms
-
         for i in range(4):  # warm-up
-            move(i)
+            app_latency.step_psi(page, sources, i)
         cdp.send("Profiler.start")
-        times = [move(i) for i in range(moves)]
+        times = [app_latency.step_psi(page, sources, i) for i in range(moves)]
         prof = cdp.send("Profiler.stop")["profile"]
         browser.close()
     return times, prof
