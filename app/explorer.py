@@ -57,7 +57,7 @@ from app.state import (
     parse_value,
     query_value,
 )
-from app.widgets import ExactSlider, LabelledCheckbox
+from app.widgets import ExactSlider, LabelledCheckbox, bind
 from core import Contact
 
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
@@ -413,7 +413,7 @@ class Explorer(param.Parameterized):
                 ("nu", "ν Poisson ratio", 0.0, 0.49, 0.01)):
             widget = ExactSlider(label=label, value=getattr(s, name), start=start, end=end,
                                  step=step, parse=partial(parse_value, name), name=name)
-            self._bind(widget, name)
+            bind(widget, s.param[name])
             setattr(self, f"{name}_slider", widget)
         # not bound both ways: while playing, the browser's player moves it (the state
         # keeps the tau the play started from)
@@ -458,11 +458,6 @@ class Explorer(param.Parameterized):
                                          color="primary", width=150)
             for key in ("curves", "traction", "impulse")
         }
-
-    def _bind(self, widget: ExactSlider, name: str) -> None:
-        """Keep `widget.value` and `state.<name>` equal, whichever changes."""
-        widget.param.watch(lambda e: setattr(self.state, name, e.new), "value")
-        self.state.param.watch(lambda e: setattr(widget, "value", e.new), name)
 
     def _on_preset_select(self, event) -> None:
         if event.new and event.new != self.state.preset:

@@ -32,7 +32,7 @@ import param
 
 import core
 from app.state import SI_KEYS, ExplorerState, domain
-from app.widgets import ERROR_STYLE, LabelledCheckbox, text_html
+from app.widgets import ERROR_STYLE, LabelledCheckbox, show_later, text_html
 from core import Interval
 
 #: Style of an advisory warning under a box (dark amber on white: 8.5:1 contrast).
@@ -218,7 +218,7 @@ class PhysicalInputs(pn.viewable.Viewer):
 
     def _on_entry(self, field: Field, value: float | None) -> None:
         """A value typed or spun in the box of `field` (in `field.unit`)."""
-        current = getattr(self.state, field.name)
+        current, box = getattr(self.state, field.name), self.boxes[field.name]
         if value == display(field, current):
             return  # the box shows the state's value (set from here, or reverted)
         try:
@@ -226,12 +226,12 @@ class PhysicalInputs(pn.viewable.Viewer):
         except ValueError as err:
             self.errors = {**self.errors, field.name: str(err)}
             self._show_note(field)
-            self._show_later(field, display(field, current))  # back to the last good value
+            show_later(box, display(field, current))  # back to the last good value
             return
         self.errors = {**self.errors, field.name: ""}
         if si == current:  # e.g. float noise of a spin click: the state does not change
             self._show_note(field)
-            self._show_later(field, display(field, si))
+            show_later(box, display(field, si))
             return
         setattr(self.state, field.name, si)  # `_on_state` shows it
 
@@ -243,19 +243,9 @@ class PhysicalInputs(pn.viewable.Viewer):
                     self.errors = {**self.errors, e.name: ""}
                 self._show_note(field)
                 if self.boxes[e.name].value != display(field, e.new):
-                    self._show_later(field, display(field, e.new))
+                    show_later(self.boxes[field.name], display(field, e.new))
         self._show_refusal()
 
-    def _show_later(self, field: Field, value: float) -> None:
-        """Show `value` in the box of `field` once the browser's entry has been handled
-        (Panel sends no change of a property back to the browser while handling the
-        browser's change of it)."""
-        box = self.boxes[field.name]
-        doc = pn.state.curdoc
-        if doc is None or doc.session_context is None:
-            box.value = value
-        else:
-            doc.add_next_tick_callback(lambda: setattr(box, "value", value))
 
     def _show_note(self, field: Field) -> None:
         """Under the box of `field`: why its last entry was refused, else the advisory

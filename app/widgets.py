@@ -31,6 +31,25 @@ from panel.io.state import set_curdoc
 ERROR_STYLE = {"color": "#a4161a", "font-size": "0.9em", "margin-top": "0"}
 
 
+def bind(widget: param.Parameterized, parameter: param.Parameter) -> None:
+    """Keep `widget.value` and `parameter` (of a Parameterized instance, e.g.
+    `state.param.psi`) equal, whichever of the two changes."""
+    owner, name = parameter.owner, parameter.name
+    widget.param.watch(lambda e: setattr(owner, name, e.new), "value")
+    owner.param.watch(lambda e: setattr(widget, "value", e.new), name)
+
+
+def show_later(widget: param.Parameterized, value: object) -> None:
+    """Set `widget.value` once the browser's entry into it has been handled (Panel sends
+    no change of a property back to the browser while handling the browser's change of
+    it); at once without a server session (a notebook)."""
+    doc = pn.state.curdoc
+    if doc is None or doc.session_context is None:
+        widget.value = value
+    else:
+        doc.add_next_tick_callback(lambda: setattr(widget, "value", value))
+
+
 def text_html(text: str) -> str:
     """`text` as HTML that shows exactly that text (markup in it is not interpreted)."""
     return html.escape(text).replace("\n", "<br>")
@@ -130,23 +149,14 @@ class ExactSlider(pn.viewable.Viewer):
             v = self._parse(text)
         except ValueError as err:
             self.error = str(err)
-            self._show_later(self.text(self.value))  # back to the last good value
+            show_later(self._entry, self.text(self.value))  # back to the last good value
             return
         self.error = ""
         if v == self.value:
-            self._show_later(self.text(v))
+            show_later(self._entry, self.text(v))
         with hold():
             self.value = v
 
-    def _show_later(self, text: str) -> None:
-        """Show `text` in the box once the browser's entry has been handled (Panel sends
-        no change of a property back to the browser while handling the browser's change
-        of it)."""
-        doc = pn.state.curdoc
-        if doc is None or doc.session_context is None:
-            self._entry.value = text
-        else:
-            doc.add_next_tick_callback(lambda: setattr(self._entry, "value", text))
 
     @param.depends("value", watch=True)
     def _show_value(self) -> None:
@@ -192,10 +202,8 @@ class LabelledCheckbox(pn.viewable.Viewer):
                    **params) -> LabelledCheckbox:
         """A check box kept equal to the boolean `parameter` of a Parameterized instance
         (e.g. `state.param.log_psi`), whichever of the two changes."""
-        owner, name = parameter.owner, parameter.name
-        box = cls(label=label, value=getattr(owner, name), **params)
-        box.param.watch(lambda e: setattr(owner, name, e.new), "value")
-        owner.param.watch(lambda e: setattr(box, "value", e.new), name)
+        box = cls(label=label, value=getattr(parameter.owner, parameter.name), **params)
+        bind(box, parameter)
         return box
 
     def __panel__(self) -> pn.widgets.CheckBoxGroup:
