@@ -170,8 +170,7 @@ def one_window(fn: Callable[[], object], k: int) -> float:
 def per_call(fn: Callable[[], object], window: float = WINDOW, repeats: int = REPEATS
              ) -> float:
     """Seconds per call: loops of k calls lasting >= ``window``, best of ``repeats``."""
-    k = calls_per_window(fn, window)
-    return min(one_window(fn, k) for _ in range(repeats))
+    return head_to_head([fn], window, repeats)[0]
 
 
 def head_to_head(fns: list[Callable[[], object]], window: float = WINDOW,
