@@ -79,6 +79,18 @@ HEADING_CSS = "h1 { font-size: inherit; font-weight: inherit; margin: 0; }"
 SUBHEADING_CSS = "h2 { font-size: 1.17em; }"
 
 
+def heading() -> pn.pane.HTML:
+    """The page's one <h1>, `TITLE`, in the header bar's type."""
+    return pn.pane.HTML(f"<h1>{html.escape(TITLE)}</h1>", styles=HEADER_STYLE,
+                        stylesheets=[HEADING_CSS], sizing_mode="stretch_width", margin=0)
+
+
+def use_css() -> None:
+    """Put `CSS` in the page and every component's shadow root (once per process)."""
+    if CSS not in pn.config.raw_css:
+        pn.config.raw_css.append(CSS)
+
+
 @dataclass(frozen=True)
 class Keys:
     """A line of the keyboard card: `keys` (DOM key names, as `KeyboardEvent.key` or
@@ -190,11 +202,9 @@ def page(ex: Explorer) -> pn.Column:
         ex.methods.view(),
         ex.motor_card,
     ]
-    if CSS not in pn.config.raw_css:  # once per process
-        pn.config.raw_css.append(CSS)
+    use_css()
     return pn.Column(
-        pn.pane.HTML(f"<h1>{html.escape(TITLE)}</h1>", styles=HEADER_STYLE,
-                     stylesheets=[HEADING_CSS], sizing_mode="stretch_width", margin=0),
+        heading(),
         pn.FlexBox(
             pn.Column(*sidebar, styles={"flex": "0 1 370px", "min-width": "0"}),
             pn.Column(*main, styles={"flex": "1 1 600px", "min-width": "0"}),

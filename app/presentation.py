@@ -90,9 +90,7 @@ def presentation(ex: Explorer) -> pn.Column:
     full = pn.widgets.Button(label="All scenes and controls", width=220, align="center")
     full.js_on_click(code=FULL_PAGE_JS)  # the same link without view=present
     header = pn.Row(
-        pn.pane.HTML(f"<h1>{layout.TITLE}</h1>", styles=layout.HEADER_STYLE,
-                     margin=0, stylesheets=[layout.HEADING_CSS],
-                     sizing_mode="stretch_width"),
+        layout.heading(),
         full, styles={"background": layout.HEADER_STYLE["background"]},
         sizing_mode="stretch_width")
     for widget in (ex.preset_select, ex.speed_slider):  # as wide as their columns
@@ -114,8 +112,7 @@ def presentation(ex: Explorer) -> pn.Column:
         sizing_mode="stretch_both",
         styles={"flex": "1 1 0", "min-height": "0", "container-type": "size",
                 "gap": f"{GAP}px"})
-    if layout.CSS not in pn.config.raw_css:  # once per process
-        pn.config.raw_css.append(layout.CSS)
+    layout.use_css()
     # one screen high: the scenes take what the header and the controls leave
     return pn.Column(header, controls, ex.message, scenes, sizing_mode="stretch_both",
                      styles={"height": "100vh"})
