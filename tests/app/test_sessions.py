@@ -75,6 +75,11 @@ def _wait_for_no_sessions(server, timeout: float = 30.0) -> None:
     while server.get_sessions("/main") and time.monotonic() < deadline:
         time.sleep(0.2)
     assert not server.get_sessions("/main"), "the server kept its sessions"
+    # and let the server's loop finish what it was doing (a session's destruction runs
+    # there: its objects are still referenced until it returns)
+    done = threading.Event()
+    server.io_loop.add_callback(done.set)
+    assert done.wait(10), "the server's loop did not come round"
 
 
 def _load(url: str) -> None:
