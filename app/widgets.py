@@ -18,6 +18,7 @@ changes went out as three messages cost more server CPU (`docs/deploy.md`, "Load
 
 from __future__ import annotations
 
+import asyncio
 import html
 from collections.abc import Callable
 
@@ -135,9 +136,16 @@ class ExactSlider(pn.viewable.Viewer):
             self._doc.add_next_tick_callback(self._apply_due)
 
     async def _apply_due(self) -> None:
-        """(A coroutine: Bokeh runs it on the event loop, where Panel sends all it
-        changes as one message; a plain function it would run on a worker thread.)"""
+        """Apply the browser's last move (a coroutine: Bokeh runs it on the event loop,
+        where Panel can send all that the move changes as one message).
+
+        This callback wakes as Bokeh's handling of the browser's message releases the
+        document lock, on the loop turn in which Bokeh starts writing its reply to that
+        message; Panel, finding the socket busy, would then leave each change to Bokeh,
+        one message per changed model.  One turn of the loop first lets the reply go.
+        """
         self._scheduled = False
+        await asyncio.sleep(0)
         with set_curdoc(self._doc), unlocked():
             self.value = self._due
 

@@ -20,7 +20,8 @@ Each simulated user speaks Bokeh's websocket protocol, as BokehJS does in a brow
 Levels (``--levels 10,25,50,100``) are run one after the other on the same growing set
 of sessions (sessions are opened, a few at a time, before a level starts); each level
 runs ``--warmup`` s unrecorded, then ``--duration`` s recorded.  Per level it reports
-p50/p95/max latency, the changes answered, late ticks, errors, the server's resident
+p50/p95/max latency, the changes answered, the messages per answered change (the
+server's PATCH-DOCs while a change was in flight), late ticks, errors, the server's resident
 memory (RSS, all its processes) and its CPU use (in % of one core, over the recorded
 window), and the load client's own CPU (it shares the machine's cores with the server).
 
@@ -166,6 +167,7 @@ class Stats:
     latencies: list[float] = field(default_factory=list)  # seconds
     sent: int = 0
     late: int = 0
+    messages: int = 0  # PATCH-DOC messages received while a change was in flight
     errors: dict[str, int] = field(default_factory=dict)
 
     def error(self, kind: str) -> None:
@@ -248,6 +250,8 @@ class Session:
             while True:
                 header, content = await self._read()
                 kind = header.get("msgtype")
+                if kind == "PATCH-DOC" and self.pending and self.stats is not None:
+                    self.stats.messages += 1
                 if kind == "PATCH-DOC" and self.pending and self.force_ref in content:
                     if self.stats is not None:
                         self.stats.latencies.append(time.perf_counter() - self.pending[1])
@@ -413,6 +417,8 @@ async def run_levels(url: str, levels: list[int], duration: float, warmup: float
                 "p50_ms": round(pct(lat, 50), 1), "p95_ms": round(pct(lat, 95), 1),
                 "max_ms": round(lat[-1], 1) if lat else float("nan"),
                 "updates_per_s": round(len(lat) / wall, 1),
+                # messages the server sent per answered change (1: all it changes in one)
+                "messages_per_update": round(stats.messages / len(lat), 2) if lat else None,
                 "server_rss_mib": round(rss1, 0), "server_rss_before_mib": round(rss0, 0),
                 "server_cpu_pct": round(100 * (sum(cpu1.values()) - sum(cpu0.values())) / wall)
                 if pids else None,
@@ -466,13 +472,14 @@ def loopback_only(url: str) -> None:
 
 
 def table(results: list[dict]) -> str:
-    head = ("| sessions | p50 ms | p95 ms | max ms | updates/s | late ticks | errors "
-            "| server RSS MiB | server CPU % | client CPU % |")
-    lines = [head, "|" + " --- |" * 10]
+    head = ("| sessions | p50 ms | p95 ms | max ms | updates/s | messages/update "
+            "| late ticks | errors | server RSS MiB | server CPU % | client CPU % |")
+    lines = [head, "|" + " --- |" * 11]
     for r in results:
         lines.append(
             f"| {r['sessions']} | {r['p50_ms']} | {r['p95_ms']} | {r['max_ms']} "
-            f"| {r['updates_per_s']} | {r['late_ticks']} | {r['errors']} "
+            f"| {r['updates_per_s']} | {r['messages_per_update']} "
+            f"| {r['late_ticks']} | {r['errors']} "
             f"| {r['server_rss_mib']:.0f} | {r['server_cpu_pct']} | {r['client_cpu_pct']} |")
     return "\n".join(lines)
 
