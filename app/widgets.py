@@ -115,9 +115,9 @@ class ExactSlider(pn.viewable.Viewer):
         Panel applies a widget change from the browser 50 ms after it arrives (it waits
         to merge the moves of a drag), a wait in which the server is idle and which is
         half of a move's time on screen.  Bokeh's own `on_change` of the slider's model
-        runs when the change arrives; the move is then applied on the event loop's next
-        turn (inside `hold`, so that all it changes goes out as one message; the moves
-        that arrive before that turn are merged into the last).  Panel's delayed
+        runs when the change arrives; the move is then applied by `_apply_due` on the
+        event loop (inside `unlocked`, so that all it changes goes out as one message;
+        the moves that arrive before it runs are merged into the last).  Panel's delayed
         application finds the value already set and changes nothing.  The model is
         found by its tag (`{name}-slider`); a slider without a name is left to Panel.
         """
