@@ -57,7 +57,7 @@ from app.state import (
     parse_value,
     query_value,
 )
-from app.widgets import ExactSlider, LabelledCheckbox, bind
+from app.widgets import ExactSlider, LabelledCheckbox, LabelledSlider, bind
 from core import Contact
 
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
@@ -426,8 +426,10 @@ class Explorer(param.Parameterized):
         self.play_button.on_click(lambda _: setattr(s, "playing", not s.playing))
         self.step_button = pn.widgets.Button(label="Step", width=100)
         self.step_button.on_click(lambda _: self.step())
-        self.speed_slider = pn.widgets.FloatSlider.from_param(
-            s.param.speed, label="Speed", start=0.1, end=5.0, step=0.1)
+        self.speed_slider = LabelledSlider(label="Speed", value=s.speed, start=0.1, end=5.0,
+                                           step=0.1, show_title=True,
+                                           sizing_mode="stretch_width", margin=(5, 10))
+        bind(self.speed_slider, s.param.speed)
         self.log_box = LabelledCheckbox.from_param(s.param.log_psi,
                                                    label="log ψ axis (to 10⁶)")
         options = {"(custom)": "", **{p.label: k for k, p in PRESETS.items()}}

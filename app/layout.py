@@ -104,9 +104,10 @@ class Keys:
     opposite: bool = False
 
 
-#: The keys the page answers to (BokehJS's sliders are noUiSlider's, whose keys these
-#: are; text boxes, menus, check boxes and buttons are the browser's own).  The curve
-#: tabs are not listed: BokehJS's tabs answer to the mouse only.
+#: The keys the page answers to (the sliders are `app.widgets.LabelledSlider`s, range
+#: inputs with Page Up / Down added; text boxes, menus, check boxes and buttons are the
+#: browser's own).  The curve tabs are not listed: BokehJS's tabs answer to the mouse
+#: only.
 KEYS = (
     Keys("Anywhere", ("Tab", "Shift+Tab"), "next / previous control", opposite=True),
     Keys("Slider", ("ArrowLeft", "ArrowRight"), "one step down / up", opposite=True),

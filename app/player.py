@@ -197,6 +197,8 @@ class Player:
         if doc is None:
             return
         found = {name: doc.select_one({"tags": tag}) for name, tag in CONTROL_TAGS.items()}
+        if found["slider"] is not None:  # a LabelledSlider: its value is in its `data`
+            found["slider"] = found["slider"].data
         if any(self.script.args[name] is not model for name, model in found.items()):
             self.script.args = {**self.script.args, **found}
 

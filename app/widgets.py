@@ -6,14 +6,16 @@ the reason under the box (the same words as for a bad URL value: both come from 
 parse function).  A refused entry changes nothing and the box shows the last good value
 again; a good value outside the slider's range widens the range to show it.
 
-Built from Panel's public widgets only, kept in step on the server: the slider's moves
-write the box, the box's entries write the slider, both through `value`.  A value from
-the browser is applied inside `panel.io.hold`: everything it changes (the box, and what
-watches `value`: the plots, the readout) goes to the browser as one message.  Bokeh
+Built from Panel's public components only (the slider a `LabelledSlider`), kept in step
+on the server: the slider's moves write the box, the box's entries write the slider,
+both through `value`.  A value from the browser is applied inside `panel.io.hold`:
+everything it changes (the box, and what watches `value`: the plots, the readout) goes
+to the browser as one message.  Bokeh
 builds each message's serializer over every model of the document, so a move whose
 changes went out as three messages cost more server CPU (`docs/deploy.md`, "Load").
 
-`LabelledCheckbox` is a check box whose label names it for a screen reader.
+`LabelledSlider` is a slider named by its label (the browser's own range input), and
+`LabelledCheckbox` a check box named by its label, for a screen reader.
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ from __future__ import annotations
 import asyncio
 import html
 from collections.abc import Callable
+from typing import ClassVar
 
 import panel as pn
 import param
@@ -56,6 +59,73 @@ def text_html(text: str) -> str:
     return html.escape(text).replace("\n", "<br>")
 
 
+#: JavaScript of `LabelledSlider`: the input shows the model's range, step, value, name
+#: and state (the range first: a value outside the old range would be clamped to it).
+_SLIDER_SHOW = """
+input.min = data.start; input.max = data.end; input.step = data.step;
+input.value = data.value;
+input.disabled = data.disabled;
+input.setAttribute("aria-label", data.label);
+if (data.show_title) { title.textContent = data.label + ": " + data.value; }
+"""
+
+#: JavaScript of `LabelledSlider`: Page Up / Page Down move five steps (as BokehJS's
+#: sliders do; the browser's range input moves one).
+_SLIDER_PAGE = """
+const pages = {PageUp: 5, PageDown: -5};
+if (event != null && event.key in pages) {
+  event.preventDefault();
+  input.stepUp(pages[event.key]);
+  data.value = parseFloat(input.value);
+}
+"""
+
+
+class LabelledSlider(pn.reactive.ReactiveHTML):
+    """A slider over [start, end] by `step`, named by `label` for a screen reader.
+
+    BokehJS's Slider draws a noUiSlider whose handle (role "slider") has no accessible
+    name, and no property of Bokeh or Panel gives it one.  This one is the browser's own
+    `<input type="range">` with `aria-label` set to `label`, built with Panel's public
+    `ReactiveHTML` (its scripts run under the server's Content-Security-Policy, which
+    allows `new Function` but no `blob:` module, what a `JSComponent` is loaded as).
+    Its keys are those of BokehJS's sliders: arrows one step, Page Up / Page Down five,
+    Home / End the ends of the range.  `show_title`: "label: value" shown above it.
+
+    Its Bokeh model (Panel's `ReactiveHTML`) keeps the values in the model's `data`
+    (a Bokeh `DataModel`): `value`, `start`, `end`, `step`, `label`, `disabled`.
+    """
+
+    value = param.Number(default=0.0)
+    start = param.Number(default=0.0)
+    end = param.Number(default=1.0)
+    step = param.Number(default=0.1)
+    label = param.String(default="")
+    disabled = param.Boolean(default=False)
+    show_title = param.Boolean(default=False)
+
+    _template = (
+        '<div id="title" class="slider-title"></div>'
+        '<input type="range" id="input" '
+        'oninput="${script(\'input\')}" onkeydown="${script(\'keydown\')}"></input>')
+
+    _scripts: ClassVar[dict[str, str]] = {
+        "render": _SLIDER_SHOW,
+        **dict.fromkeys(("value", "start", "end", "step", "label", "disabled"),
+                        _SLIDER_SHOW),
+        "input": "data.value = parseFloat(input.value);",
+        "keydown": _SLIDER_PAGE,
+    }
+
+    #: The input as wide as the component, 24 px high (WCAG 2.5.8's least target).
+    CSS = ("input { display: block; width: 100%; height: 24px; margin: 0; }"
+           ".slider-title:empty { display: none; }")
+
+    def __init__(self, **params) -> None:
+        params["stylesheets"] = [self.CSS, *params.get("stylesheets", [])]
+        super().__init__(**params)
+
+
 class ExactSlider(pn.viewable.Viewer):
     """A slider over [start, end] and a box taking whatever `parse` accepts.
 
@@ -80,9 +150,9 @@ class ExactSlider(pn.viewable.Viewer):
         self._doc: Document | None = None  # the served document (`follow_browser`)
         self._due = value  # the browser's last move, applied on the next turn
         self._scheduled = False
-        self._slider = pn.widgets.FloatSlider(
-            value=value, start=self.start, end=self.end, step=step,
-            show_value=False, sizing_mode="stretch_width", margin=(0, 8, 5, 8),
+        self._slider = LabelledSlider(
+            label=label, value=value, start=self.start, end=self.end, step=step,
+            sizing_mode="stretch_width", margin=(0, 8, 5, 8),
             css_classes=[f"slider-{name}"] if name else [],
             tags=[f"{name}-slider"] if name else [])
         self._entry = pn.widgets.TextInput(label=label, value=self.text(value),
@@ -114,18 +184,19 @@ class ExactSlider(pn.viewable.Viewer):
 
         Panel applies a widget change from the browser 50 ms after it arrives (it waits
         to merge the moves of a drag), a wait in which the server is idle and which is
-        half of a move's time on screen.  Bokeh's own `on_change` of the slider's model
-        runs when the change arrives; the move is then applied by `_apply_due` on the
-        event loop (inside `unlocked`, so that all it changes goes out as one message;
-        the moves that arrive before it runs are merged into the last).  Panel's delayed
-        application finds the value already set and changes nothing.  The model is
+        half of a move's time on screen.  Bokeh's own `on_change` of the slider's values
+        (its model's `data`, see `LabelledSlider`) runs when the change arrives; the move
+        is then applied by `_apply_due` on the event loop (inside `unlocked`, so that all
+        it changes goes out as one message; the moves that arrive before it runs are
+        merged into the last).  Panel's delayed application finds the value already set
+        and changes nothing.  The model is
         found by its tag (`{name}-slider`); a slider without a name is left to Panel.
         """
         tags = self._slider.tags
         model = doc.select_one({"tags": tags[0]}) if tags else None
         if model is not None:
             self._doc = doc
-            model.on_change("value", self._on_browser_value)
+            model.data.on_change("value", self._on_browser_value)
 
     def _on_browser_value(self, attr: str, old: float, new: float) -> None:
         if new == self.value:  # (the server's own change of the slider, echoed by Bokeh)

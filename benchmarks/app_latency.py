@@ -120,7 +120,7 @@ def focus_psi(page) -> list[str]:
     """Focus the psi slider's handle of the explorer `page` (after 2 s of settling);
     returns the names of the sources in view that a psi move changes."""
     page.wait_for_timeout(2000)
-    page.locator(".noUi-handle").first.focus()  # psi
+    page.locator(".slider-psi input[type=range]").focus()  # psi
     return page.evaluate(JS_VISIBLE_SOURCES, PSI_SOURCES)
 
 

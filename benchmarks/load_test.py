@@ -114,24 +114,27 @@ def _strings(obj) -> list[str]:
 def find_targets(doc_json: dict, slider: str | None = None) -> tuple[str, str, float, float]:
     """(slider id, force source id, slider start, slider end) in a pulled document.
 
-    The ψ slider is the Slider model named ``slider`` (default ``psi``) if there is one;
-    else the Slider whose title, or the label next to it (a text in the smallest layout
-    around it that holds no other slider), starts with "ψ".
+    A slider is a BokehJS Slider model, or the values of the app's `LabelledSlider` (the
+    `data` of its ReactiveHTML model: value, start, end, step and label).  The ψ slider
+    is the slider named ``slider`` (default ``psi``) if there is one; else the slider
+    whose title or label, or the label next to it (a text in the smallest layout around
+    it that holds no other slider), starts with "ψ".
     """
     models, parent = models_of(doc_json)
     force = [i for i, m in models.items() if m.get("name") == "ColumnDataSource"
              and m.get("attributes", {}).get("name") == "force"]
     if len(force) != 1:
         raise LookupError(f"expected one ColumnDataSource named 'force', found {len(force)}")
-    sliders = [i for i, m in models.items() if m.get("name") == "Slider"]
-
     def attrs(i: str) -> dict:
         return models[i].get("attributes", {})
+
+    sliders = [i for i, m in models.items() if m.get("name") == "Slider"
+               or {"value", "start", "end", "step", "label"} <= set(attrs(i))]
 
     wanted = slider or "psi"
     named = [i for i in sliders if attrs(i).get("name") == wanted]
     if slider and not named:
-        raise LookupError(f"no Slider model named {slider!r}")
+        raise LookupError(f"no slider named {slider!r}")
     if not named:
         descendants: dict[str, set[str]] = {}
         for child in models:
@@ -140,7 +143,7 @@ def find_targets(doc_json: dict, slider: str | None = None) -> tuple[str, str, f
                 descendants.setdefault(p, set()).add(child)
                 p = parent.get(p)
         for i in sliders:
-            if PSI_LABEL.match(str(attrs(i).get("title") or "")):
+            if PSI_LABEL.match(str(attrs(i).get("title") or attrs(i).get("label") or "")):
                 named.append(i)
                 continue
             p = parent.get(i)

@@ -90,7 +90,8 @@ def explorer_server(root: Path | None = None) -> Iterator[str]:
 
 #: JavaScript: defines window.__col(name, col), a data column of the named model;
 #: window.__views(keep), every BokehJS view of the page that `keep` accepts;
-#: window.__slider(name), the Slider model of ExactSlider `name` (window.__psi(): psi's value);
+#: window.__slider(name), the values (value, start, end, step) of ExactSlider `name`'s
+#: slider, a LabelledSlider: its model's `data` (window.__psi(): psi's value);
 #: window.__renderers(), every glyph renderer view; and window.__renderer(source,
 #: glyph type), the first glyph renderer view of the named source drawing that glyph.
 JS_HELPERS = """() => {
@@ -110,7 +111,7 @@ JS_HELPERS = """() => {
     return views;
   };
   window.__slider = (name) => [...window.Bokeh.documents[0].all_models].find(
-    (m) => m.type === "Slider" && m.css_classes.includes("slider-" + name));
+    (m) => m.css_classes != null && m.css_classes.includes("slider-" + name)).data;
   window.__psi = () => window.__slider("psi").value;
   window.__renderers = () => window.__views(
     (v) => v.model != null && v.model.type === "GlyphRenderer");

@@ -85,10 +85,8 @@ CONTROL_ROLES = {"button", "textbox", "combobox", "slider", "checkbox", "radio",
 
 #: Elements drawn by BokehJS without a name, which no public means of Panel or Bokeh
 #: can name (see `known_finding`).
-KNOWN_REASON = (
-    "BokehJS's sliders (noUiSlider) get no handleAttributes: their handles (role=slider) "
-    "have no name; BokehJS's Spinner (Panel's FloatInput) draws its up and down buttons "
-    "without text")
+KNOWN_REASON = ("BokehJS's Spinner (Panel's FloatInput) draws its up and down buttons "
+                "without text")
 
 
 def page_with_cards_open(browser, url, width: int = 1600):
@@ -124,10 +122,8 @@ def grave(findings: list[dict]) -> dict[str, list[dict]]:
 
 
 def known_finding(rule: str, node: dict) -> bool:
-    """Whether axe's `node` of `rule` is one of `KNOWN_REASON`'s: a slider handle or a
-    Spinner's button without a name."""
-    if rule == "aria-input-field-name":
-        return 'role="slider"' in node["html"] and "noUi-handle" in node["html"]
+    """Whether axe's `node` of `rule` is one of `KNOWN_REASON`'s: a Spinner's button
+    without a name."""
     if rule == "button-name":
         return node["html"].startswith('<button class="bk-spin-btn')
     return False
@@ -322,9 +318,12 @@ def test_check_boxes_have_names(names) -> None:
     assert names["checkbox"] and "" not in names["checkbox"]
 
 
-@pytest.mark.xfail(strict=True, reason=KNOWN_REASON)
-def test_slider_handles_have_names(names) -> None:
-    assert names["slider"] and "" not in names["slider"]
+def test_sliders_are_named_after_their_labels(names) -> None:
+    """Each slider (a range input, `app.widgets.LabelledSlider`) is named by its label: the
+    same words as its number box's."""
+    assert sorted(names["slider"]) == sorted([
+        "ψ = tan θ / tan θ₀", "τ₀ (rad): contact starts", "μ friction", "ν Poisson ratio",
+        "τ = ωt (rad): time", "Speed"])
 
 
 # ---------------------------------------------------------------- Tab stops
@@ -377,7 +376,7 @@ def test_derived_quantities_are_a_table_of_text(browser, url) -> None:
     state = ExplorerState()
     assert [tuple(r) for r in table["rows"]] == Explorer.readout_rows(state.contact())
     psi_row = table["rows"][[q for q, _ in table["rows"]].index("ψ")]
-    page.locator(".slider-psi .noUi-handle").focus()
+    page.locator(".slider-psi input[type=range]").focus()
     page.keyboard.press("ArrowRight")
     page.wait_for_function(  # the psi row changed
         f"(old) => !JSON.stringify(({JS_READOUT})().rows).includes(JSON.stringify(old))",
@@ -435,7 +434,7 @@ def test_keyboard_card_lists_keys_that_work(browser, url) -> None:
     # a slider: mu, by its step, five steps, its ends
     start, end, step = page.evaluate(
         "() => { const s = __slider('mu'); return [s.start, s.end, s.step]; }")
-    page.locator(".slider-mu .noUi-handle").focus()
+    page.locator(".slider-mu input[type=range]").focus()
     mu = slider(page, "mu")
     for key, change in (("ArrowRight", step), ("ArrowLeft", -step), ("ArrowUp", step),
                         ("ArrowDown", -step), ("PageUp", 5 * step), ("PageDown", -5 * step)):

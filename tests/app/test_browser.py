@@ -68,7 +68,7 @@ def settled(page, name: str, col: str, timeout_ms: int = 20_000) -> list[float]:
 def test_keyboard_slider_changes_plot_data(browser, url) -> None:
     page, console = open_explorer(browser, url)
     psi0 = psi_of(page)
-    handle = page.locator(".noUi-handle").first  # the psi slider
+    handle = page.locator(".slider-psi input[type=range]")  # the psi slider
     handle.focus()
     for _ in range(3):
         page.keyboard.press("ArrowRight")
@@ -104,7 +104,7 @@ def wait_for_new(page, name: str, col: str, before: list[float] | None) -> list[
 def step_psi(page) -> float:
     """Press ArrowRight on the psi slider and wait until the plots' data follow; the new psi."""
     T = column(page, "force", "T")
-    page.locator(".noUi-handle").first.focus()
+    page.locator(".slider-psi input[type=range]").focus()
     page.keyboard.press("ArrowRight")
     wait_for_new(page, "force", "T", T)
     return psi_of(page)
@@ -125,14 +125,13 @@ def test_number_box_follows_the_slider_and_takes_exact_values(browser, url) -> N
     c = Contact(250.5, math.pi / 6)
     np.testing.assert_allclose(T, c.tangential_force(c.tau_grid(CURVE_POINTS)),
                                rtol=1e-12, atol=1e-15)
-    slider_end = page.evaluate("""() => {
-      const s = window.Bokeh.documents[0].all_models;
-      for (const m of s) if (m.type === "Slider" && m.value === 250.5) return m.end;
-      return null; }""")
+    slider_end = page.evaluate("() => __slider('psi').end")
     assert slider_end == 250.5  # the slider widened to show it
+    drawn = page.locator(".slider-psi input[type=range]")
+    assert (drawn.get_attribute("max"), drawn.input_value()) == ("250.5", "250.5")
     # a value the server sets reaches the box too, also the value the server last
     # heard from the box itself (the box never reports the slider's moves)
-    page.locator(".noUi-handle").first.focus()
+    page.locator(".slider-psi input[type=range]").focus()
     page.keyboard.press("ArrowLeft")
     page.wait_for_function("() => __psi() < 250.5", timeout=20_000)
     T = wait_for_new(page, "force", "T", T)
@@ -241,7 +240,7 @@ def test_play_starts_right_after_slider_moves(browser, url) -> None:
     marker moves.  Before the player's updates went through hold(), about 1 Play in 8
     did nothing (this test failed 1 run in 3 against that code)."""
     page, console = open_explorer(browser, url)
-    handle = page.locator(".noUi-handle").first
+    handle = page.locator(".slider-psi input[type=range]")
     # press Play at several delays around URL_DELAY_S after the last move, when the
     # server writes the new URL
     for round_, delay_ms in enumerate((300, 360, 400, 440, 500, 560)):
@@ -256,20 +255,18 @@ def test_play_starts_right_after_slider_moves(browser, url) -> None:
 
 
 #: What the page shows now of tau, read from what is drawn (the DOM of the tau box, the
-#: tau slider's handle and the formula card's title) and the T(tau) marker's position.
+#: tau slider's range input, whose value places the thumb the browser draws, and the
+#: formula card's title) and the T(tau) marker's position.
 JS_SHOWN_TAU = """() => {
   const view = (tag) => __views((v) => v.model != null && v.model.tags != null
       && v.model.tags.includes(tag))[0];
   const root = (v) => v.el.shadowRoot || v.el;
-  const slider = view("tau-slider");
-  const base = root(slider).querySelector(".noUi-base").getBoundingClientRect();
-  const handle = root(slider).querySelector(".noUi-handle").getBoundingClientRect();
-  const at = (handle.x + handle.width / 2 - base.x) / base.width;  // where it is drawn
+  const slider = root(view("tau-slider")).querySelector("input[type=range]");
   return {
     marker: __col("force_marker", "x")[0],
     box: root(view("tau-entry")).querySelector("input").value,
-    handle: slider.model.start + at * (slider.model.end - slider.model.start),
-    pixel: (slider.model.end - slider.model.start) / base.width,
+    handle: parseFloat(slider.value),
+    pixel: (slider.max - slider.min) / slider.getBoundingClientRect().width,
     formula: root(view("formulas")).querySelector("b").textContent,
     badge: __col("spheres_badge", "text")[0],
     patch: __col("spheres_patch", "x1")[2] - __col("spheres_patch", "x0")[0],
@@ -415,7 +412,7 @@ def test_the_traction_phase_is_painted_after_psi_moves_into_counter_slip(browser
     box.fill("2.30")
     box.press("Enter")
     assert_phase_painted(page, phase_of(math.sqrt(2) + 1, math.pi / 6, 2.30))
-    page.locator(".noUi-handle").first.focus()  # psi
+    page.locator(".slider-psi input[type=range]").focus()  # psi
     for _ in range(11):
         page.keyboard.press("PageUp")
         page.wait_for_timeout(150)
