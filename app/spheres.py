@@ -148,10 +148,9 @@ class SpheresScene(Scene):
         # (scaled down, its aspect kept, on a screen narrower than that)
         fig = figure(title="Two spheres in section", width=420, height=640, max_width=420,
                      sizing_mode="scale_width", x_range=Range1d(-1.6, 1.6),
-                     y_range=Range1d(-2.45, 2.1), tools="save", toolbar_location="above")
+                     y_range=Range1d(-2.45, 2.1), tools="save", toolbar_location="above",
+                     x_axis_type=None, y_axis_type=None)  # (no axes, no grid)
         fig.select_one(SaveTool).filename = png_name(fig.title.text)
-        fig.axis.visible = False
-        fig.grid.visible = False
         s = self.sources
         fig.line("x", "y", source=self.rest, line_dash="dashed", color="#999999",
                  line_width=1.5)
