@@ -110,7 +110,15 @@ class MethodsScene:
         self._built = False
         self._contact: Contact | None = None
         self.results: list = []
+        # collapsed by default; while collapsed nothing here is built, computed or sent
+        # (a hidden plot whose data changes also makes the browser lay out the page
+        # again): the controls and the plot are built when the card is first opened
+        self.card = pn.Card(title="Methods: numerical schemes against the closed form",
+                            collapsed=True, sizing_mode="stretch_width", margin=6)
+        self.card.param.watch(self._on_collapsed, "collapsed")
 
+    def _build(self) -> None:
+        """The controls and the overlay plot (on the card's first opening)."""
         self.choice = pn.widgets.MultiChoice(
             label="Methods", options=list(self.methods),
             value=[m for m in DEFAULT_METHODS if m in self.methods], sizing_mode="stretch_width")
@@ -130,11 +138,8 @@ class MethodsScene:
         fig.legend.location = "bottom_left"
         style_figure(fig)
         self.figure = fig
-        # collapsed by default; while collapsed nothing here is computed or sent (a hidden
-        # plot whose data changes also makes the browser lay out the page again)
-        self.card = pn.Card(title="Methods: numerical schemes against the closed form",
-                            collapsed=True, sizing_mode="stretch_width", margin=6)
-        self.card.param.watch(self._on_collapsed, "collapsed")
+        self._built = True
+        self.card.objects = self._body()
 
     @property
     def shown(self) -> bool:
@@ -146,8 +151,7 @@ class MethodsScene:
         if event.new:
             return
         if not self._built:
-            self._built = True
-            self.card.objects = self._body()
+            self._build()
         if self._contact is not None:
             with hold():
                 self.update_contact(self._contact)
@@ -303,7 +307,7 @@ class MethodsScene:
         return fig
 
     def view(self) -> pn.Card:
-        """The scene: a collapsed card, filled (`_body`) when first opened."""
+        """The scene: a collapsed card, filled (`_build`, `_body`) when first opened."""
         return self.card
 
     def _body(self) -> list:
