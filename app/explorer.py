@@ -146,8 +146,6 @@ class Explorer(param.Parameterized):
         self._show_figure(0)
         self._stale: set[Scene] = set()
         self.tabs.param.watch(self._on_tab, ["active"])
-        self.follow_motor = LabelledCheckbox(
-            label="The plots above show the contact at the rotor's x₀", value=True)
         self.motor_card = pn.Card(title="Motor: the rod, its thrust and speed (Fig. 1)",
                                   collapsed=True, sizing_mode="stretch_width", margin=6)
         self.motor_card.param.watch(self._on_motor_card, "collapsed")
@@ -255,6 +253,8 @@ class Explorer(param.Parameterized):
         if event.new or self.motor is not None:
             return
         self.motor = MotorScene()
+        self.follow_motor = LabelledCheckbox(
+            label="The plots above show the contact at the rotor's x₀", value=True)
         messages = self.motor.apply_query(self._motor_query)
         self.motor.on_contact(self._follow_motor)
         self.motor.state.param.watch(lambda *_: self._write_url(),
