@@ -222,10 +222,11 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
     data = {("ColumnDataSource", n, "data") for n in (
         "traction", "disc", "force", "force_marker", "force_landmarks",
         "spheres_drive", "spheres_lower", "spheres_patch", "spheres_forces")}
+    slider = doc.select_one({"tags": "psi-slider"}).data  # a LabelledSlider's values
     assert changed == data | {("Label", "traction_caption", "text"), ("HTML", None, "text"),
                               ("Label", "spheres_rest_note", "text"),
-                              ("Slider", None, "value"), ("TextInput", None, "value"),
-                              ("TextInput", None, "value_input")}
+                              (type(slider).__name__, slider.name, "value"),
+                              ("TextInput", None, "value"), ("TextInput", None, "value_input")}
     assert ex.state.psi == ex.psi_slider.value == 2.51
     events.clear()
     assert doc.get_model_by_name("radii") is None  # a closed tab's plot is not in the page
