@@ -117,10 +117,11 @@ JS_IN_VIEW = """() => {
 
 
 def focus_psi(page) -> list[str]:
-    """Focus the psi slider's handle of the explorer `page` (after 2 s of settling);
-    returns the names of the sources in view that a psi move changes."""
+    """Focus the psi slider of the explorer `page` (after 2 s of settling): its range
+    input, or in revisions before 5174ea3 its noUiSlider handle; returns the names of
+    the sources in view that a psi move changes."""
     page.wait_for_timeout(2000)
-    page.locator(".slider-psi input[type=range]").focus()  # psi
+    page.locator(".slider-psi input[type=range], .slider-psi .noUi-handle").focus()
     return page.evaluate(JS_VISIBLE_SOURCES, PSI_SOURCES)
 
 
