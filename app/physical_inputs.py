@@ -4,15 +4,16 @@ people think in.
 The state (`app.state.ExplorerState`) keeps R, G, H, u0, h in SI units and the angular
 frequency omega in rad/s; the boxes show and take R in mm, G in GPa, H, u0 and h in µm
 and the frequency f = omega / (2 pi) in kHz.  `FIELDS` is the one table of the boxes:
-unit, spin step and the advisory sensible range of each.  The pure functions below
+unit and the advisory sensible range of each.  The pure functions below
 convert between the two (`to_si`, `to_user`, `display`), check a typed value against
 core's allowed range (`parse_entry`, the range from `core.DOMAIN` via
 `app.state.domain`, written in the box's unit) and word the advisory warning
 (`warning`) and core's refusal of the inputs taken together (`refusal`).
 
-A box takes any number: a value outside core's range is refused with that range in the
-box's unit under it and the box shows the last good value again (the browser's own limits
-of a number box would put the old value back without a word).  A value outside its
+A box is a text box and takes any number: a text that is not a number, or a value
+outside core's range, is refused with that range in the box's unit under it and the box
+shows the last good value again (the browser's own limits of a number box would put the
+old value back without a word).  A value outside its
 sensible range is used and a warning under the box says so.  What the core refuses of
 the inputs together (e.g. |h| >= H) is shown under the boxes in core's words.
 
@@ -32,7 +33,7 @@ import param
 
 import core
 from app.state import SI_KEYS, ExplorerState, domain
-from app.widgets import ERROR_STYLE, LabelledCheckbox, show_later, text_html
+from app.widgets import ERROR_STYLE, LabelledCheckbox, show_later, text_html, typed_value
 from core import Interval
 
 #: Style of an advisory warning under a box (dark amber on white: 8.5:1 contrast).
@@ -46,7 +47,7 @@ REFUSED = "Refused by core (in SI units: m, Pa, rad/s): "
 
 #: Significant digits a box's value is read and shown to: every decimal of up to 15
 #: digits is one float, so what a person types is kept as typed, and the float noise
-#: of a spin click (2.2 + 0.1 = 2.3000000000000003) or of a unit conversion is dropped.
+#: of a unit conversion (2.3e-6 m / 1e-6 = 2.3000000000000003 µm) is dropped.
 DIGITS = 15
 
 
@@ -56,9 +57,8 @@ class Field:
 
     `name`: the `ExplorerState` parameter it sets (SI units: m, Pa, rad/s); `symbol`,
     `unit` and `label` title the box, `symbol (unit): label`; one `unit` is
-    `factor * 10**decade` SI units (mm: 1e-3 m; kHz of f: 2 pi 1e3 rad/s); `step`: a
-    spin click, in `unit`; `sensible`: the advisory range (lo, hi), in `unit`, outside
-    which a warning shows.
+    `factor * 10**decade` SI units (mm: 1e-3 m; kHz of f: 2 pi 1e3 rad/s); `sensible`:
+    the advisory range (lo, hi), in `unit`, outside which a warning shows.
     """
 
     name: str
@@ -66,7 +66,6 @@ class Field:
     label: str
     unit: str
     decade: int
-    step: float
     sensible: tuple[float, float]
     factor: float = 1.0
 
@@ -76,7 +75,7 @@ class Field:
         return f"{self.symbol} ({self.unit}): {self.label}"
 
 
-#: The boxes of the card, in order: units, spin steps and sensible ranges.
+#: The boxes of the card, in order: units and sensible ranges.
 #:
 #: The sensible ranges are advisory: they bound the contacts this model is usually
 #: applied to (millimetre to metre spheres of gels to diamond, drive amplitudes up to a
@@ -84,12 +83,12 @@ class Field:
 #: unit.  Such a value is still used, with a warning under its box; what the core
 #: accepts is `core.DOMAIN`, far wider.
 FIELDS: dict[str, Field] = {f.name: f for f in (
-    Field("R", "R", "sphere radius", "mm", -3, 1.0, (0.1, 1000.0)),
-    Field("G", "G", "shear modulus", "GPa", 9, 1.0, (0.1, 1000.0)),
-    Field("H", "H", "normal amplitude", "µm", -6, 0.1, (0.001, 1000.0)),
-    Field("u0", "u₀", "tangential amplitude", "µm", -6, 0.1, (0.0, 1000.0)),
-    Field("h", "h", "gap at t = 0, < H (< 0: a preload)", "µm", -6, 0.1, (-1000.0, 1000.0)),
-    Field("omega", "f", "frequency, ω = 2πf", "kHz", 3, 1.0, (0.001, 10000.0),
+    Field("R", "R", "sphere radius", "mm", -3, (0.1, 1000.0)),
+    Field("G", "G", "shear modulus", "GPa", 9, (0.1, 1000.0)),
+    Field("H", "H", "normal amplitude", "µm", -6, (0.001, 1000.0)),
+    Field("u0", "u₀", "tangential amplitude", "µm", -6, (0.0, 1000.0)),
+    Field("h", "h", "gap at t = 0, < H (< 0: a preload)", "µm", -6, (-1000.0, 1000.0)),
+    Field("omega", "f", "frequency, ω = 2πf", "kHz", 3, (0.001, 10000.0),
           factor=2 * math.pi),
 )}
 assert tuple(FIELDS) == SI_KEYS
@@ -123,6 +122,12 @@ def display(field: Field, si: float) -> float:
     return rounded(to_user(field, si))
 
 
+def box_text(field: Field, si: float) -> str:
+    """The text the box of `field` shows for the SI value `si`: `display`'s number, in
+    its shortest form ("5", "79.3", "-0.5", "2e-06")."""
+    return f"{display(field, si):.{DIGITS}g}"
+
+
 def limits(field: Field) -> Interval:
     """Core's allowed range of `field` (`core.DOMAIN` via `app.state.domain`), in
     `field.unit`."""
@@ -133,8 +138,14 @@ def limits(field: Field) -> Interval:
 
 
 def parse_entry(field: Field, value: object) -> float:
-    """The SI value (m, Pa or rad/s) of `value` typed in `field.unit`; ValueError naming
-    the box, the value and core's allowed range in `field.unit` if core refuses it."""
+    """The SI value (m, Pa or rad/s) of `value` (a number, or the text typed) in
+    `field.unit`; ValueError naming the box, the value and core's allowed range in
+    `field.unit` if it is not a number or core refuses it."""
+    if isinstance(value, str):
+        try:
+            value = float(value)
+        except ValueError:
+            pass  # refused below, with the text as typed
     if isinstance(value, float | int) and not isinstance(value, bool):
         value = rounded(float(value))
         si = to_si(field, value)
@@ -167,7 +178,7 @@ def refusal(state: ExplorerState) -> str:
 
 class PhysicalInputs(pn.viewable.Viewer):
     """The "Physical inputs" card of `state` (`__panel__`): the check box that defines
-    the contact by these inputs, the material menu, one number box per `FIELDS` row with
+    the contact by these inputs, the material menu, one text box per `FIELDS` row with
     its message under it, and core's refusal of the inputs together under them.
 
     The boxes and the menu follow the state whichever side changes; `errors` holds, per
@@ -187,11 +198,11 @@ class PhysicalInputs(pn.viewable.Viewer):
         self.material_note = pn.pane.HTML(
             text_html("A material sets G, ν and μ and switches the physical inputs on."),
             styles=NOTE_STYLE, sizing_mode="stretch_width", margin=(0, 10))
-        self.boxes: dict[str, pn.widgets.FloatInput] = {}
+        self.boxes: dict[str, pn.widgets.TextInput] = {}
         self.notes: dict[str, pn.pane.HTML] = {}
         for f in FIELDS.values():
-            box = pn.widgets.FloatInput(
-                label=f.title, value=display(f, getattr(state, f.name)), step=f.step,
+            box = pn.widgets.TextInput(
+                label=f.title, value=box_text(f, getattr(state, f.name)),
                 sizing_mode="stretch_width", css_classes=[f"si-{f.name}"])
             box.param.watch(lambda e, f=f: self._on_entry(f, e.new), "value")
             self.boxes[f.name] = box
@@ -216,22 +227,22 @@ class PhysicalInputs(pn.viewable.Viewer):
 
     # ----------------------------------------------------------------- boxes
 
-    def _on_entry(self, field: Field, value: float | None) -> None:
-        """A value typed or spun in the box of `field` (in `field.unit`)."""
+    def _on_entry(self, field: Field, text: str) -> None:
+        """A text typed in the box of `field` (a number in `field.unit`)."""
         current, box = getattr(self.state, field.name), self.boxes[field.name]
-        if value == display(field, current):
-            return  # the box shows the state's value (set from here, or reverted)
         try:
-            si = parse_entry(field, value)
-        except ValueError as err:
+            si = typed_value(box, text, box_text(field, current),
+                             lambda t: parse_entry(field, t))
+        except ValueError as err:  # (the box shows the last good value again)
             self.errors = {**self.errors, field.name: str(err)}
             self._show_note(field)
-            show_later(box, display(field, current))  # back to the last good value
             return
+        if si is None:
+            return  # the box shows the state's value (set from here, or reverted)
         self.errors = {**self.errors, field.name: ""}
-        if si == current:  # e.g. float noise of a spin click: the state does not change
+        if si == current:  # e.g. "2.50" for 2.5: the state does not change
             self._show_note(field)
-            show_later(box, display(field, si))
+            show_later(box, box_text(field, si))
             return
         setattr(self.state, field.name, si)  # `_on_state` shows it
 
@@ -242,8 +253,8 @@ class PhysicalInputs(pn.viewable.Viewer):
                 if self.errors.get(e.name):  # a new value: the refused entry is past
                     self.errors = {**self.errors, e.name: ""}
                 self._show_note(field)
-                if self.boxes[e.name].value != display(field, e.new):
-                    show_later(self.boxes[field.name], display(field, e.new))
+                if self.boxes[e.name].value != box_text(field, e.new):
+                    show_later(self.boxes[field.name], box_text(field, e.new))
         self._show_refusal()
 
 

@@ -54,6 +54,22 @@ def show_later(widget: param.Parameterized, value: object) -> None:
         doc.add_next_tick_callback(lambda: setattr(widget, "value", value))
 
 
+def typed_value(box: pn.widgets.TextInput, text: str, shown: str,
+                parse: Callable[[str], float]) -> float | None:
+    """What `text`, the new value of the text `box`, stands for, the box having shown
+    `shown` (the text of the last good value): None when `text` is that text (the box was
+    set from the server, or put back); else `parse(text)`.  When `parse` refuses the
+    text (ValueError, raised on), the box shows `shown` again."""
+    text = text.strip()
+    if text == shown:
+        return None
+    try:
+        return parse(text)
+    except ValueError:
+        show_later(box, shown)  # back to the last good value
+        raise
+
+
 def text_html(text: str) -> str:
     """`text` as HTML that shows exactly that text (markup in it is not interpreted)."""
     return html.escape(text).replace("\n", "<br>")
@@ -221,15 +237,13 @@ class ExactSlider(pn.viewable.Viewer):
             self.value = self._due
 
     def _on_entry(self, event: param.parameterized.Event) -> None:
-        text = event.new.strip()
-        if text == self.text(self.value):
-            return  # the box shows the value (set from here, or the refused text reverted)
         try:
-            v = self._parse(text)
-        except ValueError as err:
+            v = typed_value(self._entry, event.new, self.text(self.value), self._parse)
+        except ValueError as err:  # (the box shows the last good value again)
             self.error = str(err)
-            show_later(self._entry, self.text(self.value))  # back to the last good value
             return
+        if v is None:
+            return  # the box shows the value (set from here, or the refused text reverted)
         self.error = ""
         if v == self.value:
             show_later(self._entry, self.text(v))

@@ -83,12 +83,6 @@ JS_A11Y = r"""() => {
 CONTROL_ROLES = {"button", "textbox", "combobox", "slider", "checkbox", "radio",
                  "spinbutton", "link", "tab"}
 
-#: Elements drawn by BokehJS without a name, which no public means of Panel or Bokeh
-#: can name (see `known_finding`).
-KNOWN_REASON = ("BokehJS's Spinner (Panel's FloatInput) draws its up and down buttons "
-                "without text")
-
-
 def page_with_cards_open(browser, url, width: int = 1600):
     """The explorer with the sidebar's collapsed cards (Physical inputs, Keyboard) open,
     and the helpers of this module."""
@@ -121,24 +115,12 @@ def grave(findings: list[dict]) -> dict[str, list[dict]]:
     return {f["id"]: f["nodes"] for f in findings if f["impact"] in ("serious", "critical")}
 
 
-def known_finding(rule: str, node: dict) -> bool:
-    """Whether axe's `node` of `rule` is one of `KNOWN_REASON`'s: a Spinner's button
-    without a name."""
-    if rule == "button-name":
-        return node["html"].startswith('<button class="bk-spin-btn')
-    return False
-
-
-def test_axe_finds_nothing_serious_or_critical_but_the_known(axe_findings) -> None:
-    """Every serious or critical finding of axe is one of `KNOWN_REASON`'s."""
-    left = {rule: [n["target"] for n in nodes if not known_finding(rule, n)]
-            for rule, nodes in grave(axe_findings).items()}
-    assert {rule: nodes for rule, nodes in left.items() if nodes} == {}
-
-
-@pytest.mark.xfail(strict=True, reason=KNOWN_REASON)
 def test_axe_finds_nothing_serious_or_critical(axe_findings) -> None:
-    assert grave(axe_findings) == {}
+    """No serious or critical finding: the sliders are range inputs named by their
+    labels (BokehJS's noUiSlider handles had no name), the physical inputs text boxes
+    (BokehJS's Spinner draws its buttons without text)."""
+    assert {rule: [n["target"] for n in nodes]
+            for rule, nodes in grave(axe_findings).items()} == {}
 
 
 # ---------------------------------------------------------------- type size
@@ -304,7 +286,8 @@ def names(browser, url) -> dict[str, list[str]]:
 
 def test_text_boxes_are_named_after_their_labels(names) -> None:
     for label in ("ψ = tan θ / tan θ₀", "τ₀ (rad): contact starts", "μ friction",
-                  "ν Poisson ratio", "τ = ωt (rad): time"):
+                  "ν Poisson ratio", "τ = ωt (rad): time", "R (mm): sphere radius",
+                  "f (kHz): frequency, ω = 2πf"):
         assert label in names["textbox"]
     assert "" not in names["textbox"] and "" not in names.get("spinbutton", [])
 

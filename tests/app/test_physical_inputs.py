@@ -1,8 +1,10 @@
-"""The "Physical inputs" card (app/physical_inputs.py): units people think in, spin steps,
-advisory warnings, core's refusals under the boxes, materials and the SI state in the URL.
+"""The "Physical inputs" card (app/physical_inputs.py): units people think in, typed text
+checked at the boxes, advisory warnings, core's refusals under the boxes, materials and
+the SI state in the URL.
 
-Document tests change the boxes as the browser does (their `value`, in the box's unit)
-and compare with `core`; the browser test types in Chromium and reads what is shown.
+Document tests change the boxes as the browser does (their `value`, the text typed in the
+box's unit) and compare with `core`; the browser test types in Chromium and reads what is
+shown.
 """
 
 from __future__ import annotations
@@ -16,7 +18,7 @@ from explorer_browser import open_explorer
 
 import core
 from app.explorer import Explorer
-from app.physical_inputs import FIELDS, REFUSED, display, to_si, to_user, warning
+from app.physical_inputs import FIELDS, REFUSED, box_text, display, to_si, to_user, warning
 from app.state import SI_KEYS, parse_query
 from core import DOMAIN, MATERIALS, Contact
 
@@ -30,7 +32,8 @@ def ex() -> Explorer:
 
 
 def box_values(ex: Explorer) -> dict[str, float]:
-    return {k: b.value for k, b in ex.physical_inputs.boxes.items()}
+    """The numbers the boxes show (their text)."""
+    return {k: float(b.value) for k, b in ex.physical_inputs.boxes.items()}
 
 
 def note(ex: Explorer, name: str) -> str:
@@ -55,8 +58,9 @@ def test_the_boxes_show_mm_gpa_micrometres_and_khz(ex: Explorer) -> None:
     assert shown == pytest.approx({k: getattr(s, k) / UNIT_IN_SI[k] for k in SI_KEYS},
                                   rel=1e-15)
     assert shown["omega"] == pytest.approx(s.omega / (2 * math.pi) / 1e3, rel=1e-15)
-    # no fixed format: the browser shows each number as its shortest text ("2", "79")
-    assert {b.format for b in ex.physical_inputs.boxes.values()} == {None}
+    # each number as its shortest text ("2", "79"), to 15 digits
+    assert {k: b.value for k, b in ex.physical_inputs.boxes.items()} == {
+        "R": "10", "G": "79", "H": "2", "u0": "1", "h": "1", "omega": "40"}
     assert all(v == float(f"{v:.15g}") for v in shown.values())
 
 
@@ -64,7 +68,7 @@ def test_the_boxes_show_mm_gpa_micrometres_and_khz(ex: Explorer) -> None:
 def test_the_conversion_is_exact_both_ways(name: str) -> None:
     f = FIELDS[name]
     lo, hi = f.sensible
-    for typed in (lo, hi, f.step, 2.1, 79.3, 0.37, 12345.678, 0.0003):
+    for typed in (lo, hi, 0.1, 1.0, 2.1, 79.3, 0.37, 12345.678, 0.0003):
         si = to_si(f, typed)
         if name == "omega":  # one multiplication by 2 pi each way
             assert si == pytest.approx(typed * 1e3 * 2 * math.pi, rel=2.3e-16)
@@ -80,32 +84,34 @@ def test_the_conversion_is_exact_both_ways(name: str) -> None:
 def test_typed_values_reach_the_contact_in_si(ex: Explorer) -> None:
     boxes = ex.physical_inputs.boxes
     ex.physical_box.value = True
-    for name, typed in (("R", 5.0), ("G", 26.0), ("H", 2.5), ("u0", 1.2), ("h", -0.5),
-                        ("omega", 30.0)):
+    for name, typed in (("R", "5"), ("G", "26"), ("H", "2.5"), ("u0", " 1.2 "), ("h", "-0.5"),
+                        ("omega", "3e1")):
         boxes[name].value = typed
     expected = Contact.from_physical(R=0.005, G=26e9, nu=ex.state.nu, mu=ex.state.mu,
                                      H=2.5e-6, u0=1.2e-6, h=-0.5e-6,
                                      omega=2 * math.pi * 30e3)
     assert ex.contact.scales == expected.scales
     assert (ex.state.psi, ex.state.tau0) == (expected.psi, expected.tau0)
-    assert box_values(ex) == {"R": 5.0, "G": 26.0, "H": 2.5, "u0": 1.2, "h": -0.5,
-                              "omega": 30.0}
+    assert {k: b.value for k, b in boxes.items()} == {
+        "R": "5", "G": "26", "H": "2.5", "u0": "1.2", "h": "-0.5", "omega": "30"}
 
 
-def test_a_spin_click_of_h_is_a_tenth_of_a_micrometre(ex: Explorer) -> None:
+def test_a_typed_decimal_is_kept_as_typed(ex: Explorer) -> None:
+    """2.3 µm is the float of 2.3e-6 m, and the box shows "2.3" (not the float noise of
+    2.3e-6 / 1e-6 = 2.3000000000000003); another text of the same value changes nothing
+    and the box shows the value's own text."""
     box = ex.physical_inputs.boxes["H"]
     ex.physical_box.value = True
     psi = ex.state.psi
-    assert box.step == 0.1
-    for shown, H in ((2.1, 2.1e-6), (2.2, 2.2e-6), (2.3, 2.3e-6)):
-        box.value = box.value + box.step  # as BokehJS does: 2.2 + 0.1 = 2.3000000000000003
-        assert ex.state.H == H and box.value == shown
+    for typed, H in (("2.1", 2.1e-6), ("2.2", 2.2e-6), ("2.3", 2.3e-6)):
+        box.value = typed
+        assert ex.state.H == H and box.value == typed
+    assert 2.3e-6 / 1e-6 != 2.3 and box_text(FIELDS["H"], 2.3e-6) == "2.3"
     assert ex.state.psi == pytest.approx(psi * 2.0 / 2.3, rel=1e-14)  # psi ~ u0 / H
     assert ex.contact.psi == physical_contact(ex).psi
-    # every box's click is a tenth of its default value at most
-    for name, f in FIELDS.items():
-        default = ex.state.param[name].default
-        assert 0 < to_si(f, f.step) <= 0.1 * default * (1 + 1e-15), name
+    box.value = "2.30"  # the same value: nothing changes, the box shows its text
+    assert ex.state.H == 2.3e-6 and note(ex, "H") == ""
+    assert box.value in ("2.30", "2.3")  # (set back once the browser's entry is handled)
 
 
 # -------------------------------------------------------------------- warnings
@@ -128,26 +134,32 @@ def test_a_value_outside_its_sensible_range_is_used_with_a_warning(
         ex: Explorer, name: str, typed: float, side: str) -> None:
     f = FIELDS[name]
     assert note(ex, name) == ""
-    ex.physical_inputs.boxes[name].value = typed
+    ex.physical_inputs.boxes[name].value = repr(typed)
     assert getattr(ex.state, name) == to_si(f, typed)  # used
     lo, hi = f.sensible
     assert note(ex, name) == (f"{f.symbol} = {typed:g} {f.unit} is {side} the sensible "
                               f"range {lo:g} … {hi:g} {f.unit}: is the unit right? "
                               "(a warning only: the value is used)")
-    ex.physical_inputs.boxes[name].value = display(f, ex.state.param[name].default)
+    ex.physical_inputs.boxes[name].value = box_text(f, ex.state.param[name].default)
     assert note(ex, name) == ""
 
 
 def test_a_value_core_refuses_is_explained_under_its_box_and_kept_out(ex: Explorer) -> None:
     box = ex.physical_inputs.boxes["H"]
     H = ex.state.H
-    box.value = 0.0
+    box.value = "0"
     lo, hi = (DOMAIN["H"].lo * 1e6, DOMAIN["H"].hi * 1e6)
     assert note(ex, "H") == f"H (µm) = 0 is outside the allowed range [{lo:g}, {hi:g}]"
-    assert ex.state.H == H and box.value == H * 1e6  # the last good value again
-    box.value = None  # an emptied box
-    assert note(ex, "H").startswith("H (µm) must be a real number")
-    box.value = 3.0
+    assert ex.state.H == H and box.value == "2"  # the last good value again
+    for text, shown in (("", "''"), ("2,5", "'2,5'"), ("<b>3</b>", "'<b>3</b>'")):
+        box.value = text
+        assert note(ex, "H") == (f"H (µm) must be a real number in [{lo:g}, {hi:g}], "
+                                 f"got {shown}")
+        assert ex.state.H == H and box.value == "2"
+    assert "&lt;b&gt;" in ex.physical_inputs.notes["H"].object  # shown as text
+    box.value = "nan"
+    assert note(ex, "H").startswith("H (µm) must be a finite number")
+    box.value = "3"
     assert note(ex, "H") == "" and ex.state.H == 3e-6
 
 
@@ -155,7 +167,7 @@ def test_inputs_core_refuses_together_show_core_words_under_the_boxes(ex: Explor
     ex.physical_box.value = True
     psi, pane = ex.state.psi, ex.physical_inputs.refusal
     assert not pane.visible
-    ex.physical_inputs.boxes["h"].value = 3.0  # h >= H = 2 µm
+    ex.physical_inputs.boxes["h"].value = "3"  # h >= H = 2 µm
     with pytest.raises(ValueError) as err:
         core.PhysicalInputs(R=0.01, G=ex.state.G, nu=ex.state.nu, mu=ex.state.mu, H=2e-6,
                             u0=1e-6, h=3e-6, omega=ex.state.omega)
@@ -164,7 +176,7 @@ def test_inputs_core_refuses_together_show_core_words_under_the_boxes(ex: Explor
     assert "&lt;" in pane.object and "<" not in pane.object  # shown as text
     assert ex.state.psi == psi and not ex.message.visible  # said once, here
     assert warning(FIELDS["h"], ex.state.h) == note(ex, "h") == ""  # 3 µm is sensible
-    ex.physical_inputs.boxes["H"].value = 4.0
+    ex.physical_inputs.boxes["H"].value = "4"
     assert not pane.visible and ex.contact.scales == physical_contact(ex).scales
 
 
@@ -178,7 +190,7 @@ def test_a_material_switches_the_physical_inputs_on(ex: Explorer) -> None:
     m = MATERIALS["glass"]
     assert s.physical and ex.physical_box.value  # never mu and nu of a dimensionless contact
     assert (s.G, s.nu, s.mu) == (m["G"], m["nu"], m["mu"])
-    assert ex.physical_inputs.boxes["G"].value == m["G"] / 1e9
+    assert float(ex.physical_inputs.boxes["G"].value) == m["G"] / 1e9
     assert ex.contact.scales == physical_contact(ex).scales
     assert ex.psi_slider.disabled and ex.state.query()["material"] == "glass"
     ex.mu_slider.value = 0.25  # another mu: no longer glass
@@ -194,7 +206,7 @@ def test_a_material_switches_the_physical_inputs_on(ex: Explorer) -> None:
 
 def test_a_link_restores_the_physical_inputs(ex: Explorer) -> None:
     ex.material_select.value = "steel"
-    for name, typed in (("R", 5.0), ("H", 2.5), ("u0", 1.2), ("h", -0.5), ("omega", 30.0)):
+    for name, typed in (("R", "5"), ("H", "2.5"), ("u0", "1.2"), ("h", "-0.5"), ("omega", "30")):
         ex.physical_inputs.boxes[name].value = typed
     q = ex.state.query()
     assert q["physical"] == "1" and q["material"] == "steel"
@@ -240,7 +252,7 @@ def test_physical_inputs_core_refuses_in_a_link_are_left_off() -> None:
     assert values["physical"] is False and values["h"] == 5e-6
     ex = Explorer(query=query)
     assert not ex.state.physical and ex.state.h == 5e-6  # kept, for the boxes to show
-    assert ex.physical_inputs.refusal.visible and ex.physical_inputs.boxes["h"].value == 5.0
+    assert ex.physical_inputs.refusal.visible and ex.physical_inputs.boxes["h"].value == "5"
 
 
 # --------------------------------------------------------------------- browser
@@ -274,11 +286,18 @@ def test_typed_values_show_in_the_units_and_warn_in_chromium(browser, url) -> No
     boxes["H"].fill("2")
     boxes["H"].press("Enter")
     page.get_by_text(text).wait_for(state="hidden", timeout=20_000)
-    page.locator(".si-H .bk-spin-btn-up").click()  # one spin click: 2 -> 2.1 µm
-    page.wait_for_function("(b) => b.value === '2.1'", arg=boxes["H"].element_handle(),
+    boxes["H"].fill("2.1 µm")  # not a number: explained, the box back to 2
+    boxes["H"].press("Enter")
+    page.get_by_text("H (µm) must be a real number in [1e-09, 1e+09], got '2.1 µm'").wait_for(
+        timeout=20_000)
+    page.wait_for_function("(b) => b.value === '2'", arg=boxes["H"].element_handle(),
                            timeout=20_000)
+    boxes["H"].fill("2.1")
+    boxes["H"].press("Enter")
     page.wait_for_function("() => window.location.search.includes('H=2.1e-06')",
                            timeout=20_000)
+    assert boxes["H"].input_value() == "2.1"
+    assert page.locator(".si-H button").count() == 0  # a text box: no spin buttons
     shared = parse_qs(urlsplit(page.url).query)
     assert shared["physical"] == ["1"] and shared["R"] == ["0.005"]
     assert [m for m in console if m.startswith(("error", "pageerror"))] == []
