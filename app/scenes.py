@@ -23,16 +23,24 @@ from functools import cached_property
 import numpy as np
 from bokeh.layouts import column
 from bokeh.models import (
+    Annulus,
     CDSView,
+    Circle,
     ColumnDataSource,
     CustomJS,
+    Glyph,
     GlyphRenderer,
     IndexFilter,
     Label,
     Legend,
     LegendItem,
+    Line,
     Range1d,
     SaveTool,
+    Scatter,
+    Segment,
+    Text,
+    VArea,
 )
 from bokeh.plotting import figure
 
@@ -78,6 +86,33 @@ def lean(fig) -> None:
     for r in fig.renderers:
         if isinstance(r, GlyphRenderer):
             r.nonselection_glyph = r.muted_glyph = "auto"
+
+
+#: What `draw` gives the renderer (the rest goes to the glyph), as Bokeh's glyph methods.
+RENDERER_PROPS = ("level", "name", "view", "visible")
+
+
+def draw(fig, glyph: type[Glyph], source: ColumnDataSource | None = None,
+         **props) -> GlyphRenderer:
+    """Draw a `glyph` (a Bokeh glyph type: `Line`, `Segment`, ...) of `props` from
+    `source` on `fig`, as its glyph method (`fig.line`, `fig.segment`, ...) would, as one
+    glyph model where the method makes three (with the copies `lean` drops).  As in the
+    methods, `color` and `alpha` stand for each colour and alpha of the glyph not given
+    (line, fill, hatch, text), strings name the source's columns, and `RENDERER_PROPS`
+    go to the renderer."""
+    renderer = {k: props.pop(k) for k in RENDERER_PROPS if k in props}
+    for trait in ("color", "alpha"):
+        if trait in props:
+            value = props.pop(trait)
+            for prop in glyph.properties():
+                feature, _, rest = prop.partition("_")
+                if rest == trait and feature in VISUALS:
+                    props.setdefault(prop, value)
+    return fig.add_glyph(source or ColumnDataSource(), glyph(**props), **renderer)
+
+
+#: The visual features of a glyph's properties (line_color, fill_alpha, ...).
+VISUALS = ("line", "fill", "hatch", "text", "global")
 
 
 def add_legend(fig, entries: list[tuple[str, list[GlyphRenderer]]], place: str = "right",
@@ -192,12 +227,13 @@ class TractionScene(Scene):
         super().__init__({k: [] for k in ("r", "traction", "upper", "lower", "stick_lo",
                                           "stick_hi")})
         fig = new_figure("Traction profile", "r / a*", "traction  τᵤ / (μ p*)")
-        stick = fig.varea("r", "stick_lo", "stick_hi", source=self.source,
-                          fill_color=STICK_COLOR, fill_alpha=0.25, level=FRAME_LEVEL)
-        envelope = [fig.line("r", col, source=self.source, line_dash="dashed", color="grey",
-                             line_width=2, level=FRAME_LEVEL) for col in ("upper", "lower")]
-        self.line = fig.line("r", "traction", source=self.source, color="black", line_width=3,
-                             level=FRAME_LEVEL)
+        stick = draw(fig, VArea, self.source, x="r", y1="stick_lo", y2="stick_hi",
+                     fill_color=STICK_COLOR, fill_alpha=0.25, level=FRAME_LEVEL)
+        envelope = [draw(fig, Line, self.source, x="r", y=col, line_dash="dashed",
+                         color="grey", line_width=2, level=FRAME_LEVEL)
+                    for col in ("upper", "lower")]
+        self.line = draw(fig, Line, self.source, x="r", y="traction", color="black",
+                         line_width=3, level=FRAME_LEVEL)
         add_legend(fig, [("stick zone", [stick]), ("±μ p", envelope), ("τᵤ", [self.line])],
                    place="center")
         # values at the current tau, drawn on the canvas: a text pane beside the plot
@@ -276,10 +312,11 @@ class DiscScene(Scene):
         # no legend: a legend built from the data would repaint the whole plot per frame
         fig = new_figure("Contact disc (top view)", "x / a*", "y / a*", match_aspect=True,
                          sizing_mode="fixed", width=350, height=350)
-        self.envelope = fig.circle(0, 0, radius=1.0, fill_alpha=0, line_dash="dotted",
-                                   line_color="grey", line_width=2)
-        fig.annulus("x", "y", inner_radius="inner", outer_radius="outer", source=self.source,
-                    fill_color="color", line_color="black", line_width=1, level=FRAME_LEVEL)
+        self.envelope = draw(fig, Circle, x=0, y=0, radius=1.0, fill_alpha=0,
+                             line_dash="dotted", line_color="grey", line_width=2)
+        draw(fig, Annulus, self.source, x="x", y="y", inner_radius="inner",
+             outer_radius="outer", fill_color="color", line_color="black", line_width=1,
+             level=FRAME_LEVEL)
         fig.x_range.start, fig.x_range.end = -1.15, 1.15
         fig.y_range.start, fig.y_range.end = -1.15, 1.15
         style_figure(fig)
@@ -353,28 +390,28 @@ class CurveScene(Scene):
                 zip(self._panels(), self._landmarks, strict=True)):
             extra = {"x_range": figs[0].x_range} if figs else {}
             fig = new_figure(title, "τ = ωt (rad)", y_label, **extra)
-            fig.segment(x0="x", y0="lo", x1="x", y1="hi", source=landmarks,
-                        line_color="#bbbbbb", line_width=1, line_dash="dashed")
-            fig.text("x", "hi", text="label", source=landmarks, text_align="align",
-                     text_baseline="top", text_font_size="12pt", text_color="#555555",
-                     y_offset=2)
+            draw(fig, Segment, landmarks, x0="x", y0="lo", x1="x", y1="hi",
+                 line_color="#bbbbbb", line_width=1, line_dash="dashed")
+            draw(fig, Text, landmarks, x="x", y="hi", text="label", text_align="align",
+                 text_baseline="top", text_font_size="12pt", text_color="#555555",
+                 y_offset=2)
             drawn = [(c, lb, color, dash) for c, lb, color, dash in self.curves if c in cols]
-            lines = [fig.line("tau", col, source=self.source, color=color, line_width=3,
-                              line_dash=dash, level=FRAME_LEVEL, name=f"{self.name}_{col}")
+            lines = [draw(fig, Line, self.source, x="tau", y=col, color=color, line_width=3,
+                          line_dash=dash, level=FRAME_LEVEL, name=f"{self.name}_{col}")
                      for col, _, color, dash in drawn]
             # the curves are drawn above the legend's level, so the legend goes beside them
             add_legend(fig, [(label, [line]) for (_, label, *_), line
                              in zip(drawn, lines, strict=True)])
             view = {} if len(self._panels()) == 1 else {"view": CDSView(
                 filter=IndexFilter([rows[col] for col in cols]))}
-            fig.scatter("x", "y", source=self.marker, size=13, color="color",
-                        line_color="black", level=FRAME_LEVEL, **view)
+            draw(fig, Scatter, self.marker, x="x", y="y", size=13, color="color",
+                 line_color="black", level=FRAME_LEVEL, **view)
             # the cursor at the current tau is drawn from the marker's own source, so that
             # a frame changes one data source per plot (moving a Span model costs the
             # browser a full repaint of the plot)
-            fig.segment(x0="x", y0="lo", x1="x", y1="hi", source=self.marker,
-                        line_color="#666666", line_width=2, line_dash="dotted",
-                        level=FRAME_LEVEL, **view)
+            draw(fig, Segment, self.marker, x0="x", y0="lo", x1="x", y1="hi",
+                 line_color="#666666", line_width=2, line_dash="dotted", level=FRAME_LEVEL,
+                 **view)
             style_figure(fig)
             if k:
                 fig.title.text_font_size = "13pt"

@@ -24,11 +24,21 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from bokeh.models import ColumnDataSource, Label, Range1d, SaveTool
+from bokeh.models import (
+    ColumnDataSource,
+    Label,
+    Line,
+    Patch,
+    Range1d,
+    SaveTool,
+    Scatter,
+    Segment,
+    Text,
+)
 from bokeh.plotting import figure
 
 from app.phases import STICK_COLOR, style
-from app.scenes import FRAME_LEVEL, Scene, png_name, style_figure
+from app.scenes import FRAME_LEVEL, Scene, draw, png_name, style_figure
 from app.wire import column, inline
 from core import Contact
 
@@ -152,25 +162,25 @@ class SpheresScene(Scene):
                      x_axis_type=None, y_axis_type=None)  # (no axes, no grid)
         fig.select_one(SaveTool).filename = png_name(fig.title.text)
         s = self.sources
-        fig.line("x", "y", source=self.rest, line_dash="dashed", color="#999999",
-                 line_width=1.5)
+        draw(fig, Line, self.rest, x="x", y="y", line_dash="dashed", color="#999999",
+             line_width=1.5)
         for name, fill in (("spheres_upper", "#d9d9d9"), ("spheres_lower", "#bfbfbf")):
-            fig.patch("x", "y", source=s[name], fill_color=fill, line_color="black",
-                      line_width=2, level=FRAME_LEVEL)
-        fig.segment("x0", "y0", "x1", "y1", source=self.still, line_dash="dotdash",
-                    color="#555555", line_width=2)
-        fig.segment("x0", "y", "x1", "y", source=s["spheres_patch"], color="color",
-                    line_width=9, level=FRAME_LEVEL)
-        fig.segment("x0", "y0", "x1", "y1", source=s["spheres_forces"], color="#a4161a",
-                    line_width=4, level=FRAME_LEVEL)
-        fig.scatter("x1", "y1", source=s["spheres_forces"], marker="triangle", size="head",
-                    angle="angle", color="#a4161a", level=FRAME_LEVEL)
-        fig.text("lx", "ly", text="label", source=s["spheres_forces"], text_font_size="13pt",
-                 text_color="#a4161a", text_baseline="middle", text_align="align",
-                 level=FRAME_LEVEL)
-        self.badge = fig.text(-1.5, 2.05, text="text", source=s["spheres_badge"],
-                              text_color="color", text_font_size="20pt",
-                              text_font_style="bold", text_baseline="top", level=FRAME_LEVEL)
+            draw(fig, Patch, s[name], x="x", y="y", fill_color=fill, line_color="black",
+                 line_width=2, level=FRAME_LEVEL)
+        draw(fig, Segment, self.still, x0="x0", y0="y0", x1="x1", y1="y1",
+             line_dash="dotdash", color="#555555", line_width=2)
+        draw(fig, Segment, s["spheres_patch"], x0="x0", y0="y", x1="x1", y1="y",
+             color="color", line_width=9, level=FRAME_LEVEL)
+        draw(fig, Segment, s["spheres_forces"], x0="x0", y0="y0", x1="x1", y1="y1",
+             color="#a4161a", line_width=4, level=FRAME_LEVEL)
+        draw(fig, Scatter, s["spheres_forces"], x="x1", y="y1", marker="triangle",
+             size="head", angle="angle", color="#a4161a", level=FRAME_LEVEL)
+        draw(fig, Text, s["spheres_forces"], x="lx", y="ly", text="label",
+             text_font_size="13pt", text_color="#a4161a", text_baseline="middle",
+             text_align="align", level=FRAME_LEVEL)
+        self.badge = draw(fig, Text, s["spheres_badge"], x=-1.5, y=2.05, text="text",
+                          text_color="color", text_font_size="20pt", text_font_style="bold",
+                          text_baseline="top", level=FRAME_LEVEL)
         # (over the spheres, on a white ground: the lower sphere may pass behind them)
         ground = {"background_fill_color": "white", "background_fill_alpha": 0.85,
                   "level": FRAME_LEVEL}
