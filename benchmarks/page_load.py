@@ -18,6 +18,11 @@ the most samples on their own (self).  The timing run is not profiled.
     .venv/bin/python benchmarks/page_load.py
     .venv/bin/python benchmarks/page_load.py --loads 20 --profile /tmp/page.txt --json out.json
 
+``--gc PAGES`` instead builds PAGES sessions' pages in this process, keeping them as
+the server keeps its sessions, and prints the models of each page's document, the time
+of each and of CPython's full garbage collections during it (what makes the slow loads
+slow).
+
 The server runs as the image runs it, with BOKEH_VALIDATE_DOC=false (Bokeh's checks of
 each new document, which only log; `make serve` and the tests keep them on);
 ``--validate-doc`` measures it with them.
@@ -145,6 +150,46 @@ def summarize(path: Path, top: int = 25) -> dict:
             "inclusive_libraries_pct": share(inclusive["libraries"]), "self_pct": share(own)}
 
 
+def gc_pauses(pages: int) -> list[tuple[float, float, int]]:
+    """Build `pages` sessions' documents in this process, keeping each (as the server
+    keeps its sessions): per page, (ms to build it, ms of CPython's full garbage
+    collections during the build, models in its document)."""
+    import gc
+
+    os.environ.setdefault("BOKEH_VALIDATE_DOC", "false")
+    import panel as pn
+    from bokeh.document import Document
+    from panel.io.state import set_curdoc
+
+    from app.explorer import build_explorer
+
+    pn.extension("katex", notifications=False)
+    full = {"start": 0.0, "total": 0.0}
+
+    def watch(phase: str, info: dict) -> None:
+        if info["generation"] == 2:
+            if phase == "start":
+                full["start"] = time.perf_counter()
+            else:
+                full["total"] += time.perf_counter() - full["start"]
+
+    gc.callbacks.append(watch)
+    kept, out = [], []
+    try:
+        for _ in range(pages):
+            doc, full["total"] = Document(), 0.0
+            t0 = time.perf_counter()
+            with set_curdoc(doc):
+                explorer = build_explorer({})
+                explorer.view().server_doc(doc)
+            out.append((1e3 * (time.perf_counter() - t0), 1e3 * full["total"],
+                        len(list(doc.models))))
+            kept.append((doc, explorer))
+    finally:
+        gc.callbacks.remove(watch)
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     """Parse the command line, start the server, time the loads, print the report."""
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
@@ -157,7 +202,15 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--validate-doc", action="store_true",
                    help="let Bokeh validate each document (the image sets "
                         "BOKEH_VALIDATE_DOC=false; `make serve` validates)")
+    p.add_argument("--gc", type=int, metavar="PAGES",
+                   help="instead: build PAGES pages in this process, keeping each, and "
+                        "print each one's build time and full garbage collections")
     args = p.parse_args(argv)
+    if args.gc:
+        for i, (ms, gc_ms, models) in enumerate(gc_pauses(args.gc), 1):
+            print(f"page {i:3d} ({models} models): {ms:5.0f} ms, of which full garbage "
+                  f"collection {gc_ms:4.0f} ms")
+        return 0
     if args.loads < 1:
         p.error("--loads must be >= 1")
 
