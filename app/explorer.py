@@ -26,6 +26,7 @@ import numpy as np
 import panel as pn
 import param
 from panel.io import hold
+from panel.io.resources import get_dist_path
 
 from app import export, layout, presentation
 from app.formulas import formulas
@@ -597,9 +598,18 @@ class Explorer(param.Parameterized):
         return layout.page(self)
 
     def servable(self) -> pn.Column:
-        """Mark the page servable (the application script `app/main.py` calls this)."""
-        page = self.view().servable(title=layout.TITLE)
+        """Mark the page servable (the application script `app/main.py` calls this).
+
+        Panel points its components' stylesheets at its CDN until it renders the page's
+        HTML, and then at the server's own copies.  With `--num-procs` above 1 a page's
+        websocket may reach a process that did not serve the page, which builds the
+        session's document for the websocket alone: its stylesheets would stay on the
+        CDN, which the page's Content-Security-Policy refuses (and an offline classroom
+        cannot reach).  So the document says where they are before it is built."""
         doc = pn.state.curdoc
+        if doc is not None:
+            doc.template_variables.setdefault("dist_url", get_dist_path(cdn=False))
+        page = self.view().servable(title=layout.TITLE)
         if doc is not None:
             doc.template_variables["meta"] = layout.META
             pn.state.on_session_destroyed(self.close)

@@ -180,3 +180,39 @@ def test_a_slider_move_comes_back_as_one_message(served) -> None:
     patches = asyncio.run(move())
     assert len(patches) == 1, f"a move came back as {len(patches)} messages"
     assert '"attr":"value_input"' in patches[0]  # the psi box's text, with the plots
+
+
+def test_a_session_built_for_its_websocket_alone_has_the_servers_stylesheets(served) -> None:
+    """With `--num-procs` above 1 (the image's default) a page's websocket may reach a
+    process that did not serve the page; that process builds the session's document for
+    the websocket alone, without rendering the page.  Its stylesheets must still be the
+    server's own copies: Panel's CDN is refused by the page's Content-Security-Policy
+    (the page showed unstyled, 233 refusals in the console) and out of reach offline."""
+    url, _ = served
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from bokeh.util.token import generate_jwt_token, generate_session_id
+    from load_test import Session
+    from tornado.httpclient import HTTPRequest
+    from tornado.websocket import websocket_connect
+
+    async def pull() -> str:
+        host = url.split("/")[2]
+        token = generate_jwt_token(generate_session_id())  # a session no page was made for
+        req = HTTPRequest(f"ws://{host}/main/ws", headers={
+            "Origin": f"http://{host}", "Sec-WebSocket-Protocol": f"bokeh, {token}"})
+        session = Session(url, AsyncHTTPClient(), 10.0, None)
+        session.conn = await websocket_connect(req, max_message_size=64 << 20)
+        try:
+            header, _ = await asyncio.wait_for(session._read(), 60)
+            assert header["msgtype"] == "ACK"
+            await session._send("PULL-DOC-REQ", {})
+            while True:
+                header, content = await asyncio.wait_for(session._read(), 60)
+                if header["msgtype"] == "PULL-DOC-REPLY":
+                    return content
+        finally:
+            session.close()
+
+    doc = asyncio.run(pull())
+    assert "cdn.holoviz.org" not in doc
+    assert "static/extensions/panel/css/listpanel.css" in doc
