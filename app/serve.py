@@ -26,6 +26,7 @@ passed to the Tornado application through Bokeh's ``Server`` keyword arguments).
 from __future__ import annotations
 
 import argparse
+import gc
 import logging
 import re
 import secrets
@@ -139,6 +140,8 @@ def main(argv: list[str] | None = None) -> None:
     log = logging.getLogger("app.serve")
     if "*" in args.allow_websocket_origin:
         log.warning("websocket origin '*': any web page may open sessions on this server")
+    import app.explorer  # noqa: F401  (what every session's script imports)
+    gc.freeze()  # the modules' objects: out of every later garbage collection's walk
     server = get_server({"main": str(MAIN)}, start=False, **server_options(args))
     log.info("explorer at http://%s:%d%s/main (websocket origins: %s)", args.address,
              args.port, args.prefix, ", ".join(args.allow_websocket_origin))
