@@ -253,10 +253,10 @@ class PhysicalInputs(pn.viewable.Viewer):
                 if self.errors.get(e.name):  # a new value: the refused entry is past
                     self.errors = {**self.errors, e.name: ""}
                 self._show_note(field)
-                if self.boxes[e.name].value != box_text(field, e.new):
-                    show_later(self.boxes[field.name], box_text(field, e.new))
+                box, text = self.boxes[e.name], box_text(field, e.new)
+                if box.value != text:
+                    show_later(box, text)
         self._show_refusal()
-
 
     def _show_note(self, field: Field) -> None:
         """Under the box of `field`: why its last entry was refused, else the advisory

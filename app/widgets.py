@@ -8,11 +8,11 @@ again; a good value outside the slider's range widens the range to show it.
 
 Built from Panel's public components only (the slider a `LabelledSlider`), kept in step
 on the server: the slider's moves write the box, the box's entries write the slider,
-both through `value`.  A value from the browser is applied inside `panel.io.hold`:
-everything it changes (the box, and what watches `value`: the plots, the readout) goes
-to the browser as one message.  Bokeh
+both through `value`.  A value from the browser is applied inside `panel.io.hold` (or
+`unlocked`, `ExactSlider.follow_browser`): everything it changes (the box, and what
+watches `value`: the plots, the readout) goes to the browser as one message.  Bokeh
 builds each message's serializer over every model of the document, so a move whose
-changes went out as three messages cost more server CPU (`docs/deploy.md`, "Load").
+changes went out as several messages cost more server CPU (`docs/deploy.md`, "Load").
 
 `LabelledSlider` is a slider named by its label (the browser's own range input), and
 `LabelledCheckbox` a check box named by its label, for a screen reader.
@@ -164,7 +164,7 @@ class ExactSlider(pn.viewable.Viewer):
         self._parse = parse
         self._digits = digits
         self._doc: Document | None = None  # the served document (`follow_browser`)
-        self._due = value  # the browser's last move, applied on the next turn
+        self._due = value  # the browser's last move, for `_apply_due`
         self._scheduled = False
         self._slider = LabelledSlider(
             label=label, value=value, start=self.start, end=self.end, step=step,
@@ -205,8 +205,8 @@ class ExactSlider(pn.viewable.Viewer):
         is then applied by `_apply_due` on the event loop (inside `unlocked`, so that all
         it changes goes out as one message; the moves that arrive before it runs are
         merged into the last).  Panel's delayed application finds the value already set
-        and changes nothing.  The model is
-        found by its tag (`{name}-slider`); a slider without a name is left to Panel.
+        and changes nothing.  The model is found by its tag (`{name}-slider`); a slider
+        without a name is left to Panel.
         """
         tags = self._slider.tags
         model = doc.select_one({"tags": tags[0]}) if tags else None
