@@ -191,7 +191,6 @@ class Session:
         self._reader: asyncio.Task | None = None
 
     async def open(self) -> None:
-        parts = urlsplit(self.url)
         r = await self.http.fetch(self.url, request_timeout=60, follow_redirects=True)
         for value in r.headers.get_list("Set-Cookie"):
             for k, morsel in SimpleCookie(value).items():
@@ -199,8 +198,24 @@ class Session:
         m = TOKEN.search(r.body.decode())
         if not m:
             raise LookupError("no session token in the page")
+        content = await self.pull(m.group(1))
+        self.slider, self.force, self.start, self.end = find_targets(json.loads(content),
+                                                                      self.slider_name)
+        self.force_ref = f'"model":{{"id":"{self.force}"}}'
+        self.value = None
+        # what BokehJS sends once it has rendered the document: Panel counts the session
+        # as loaded from then on (and runs its on-load callbacks)
+        await self._send("PATCH-DOC", {"events": [DOCUMENT_READY]})
+        self.alive = True
+        self._reader = asyncio.create_task(self._read_loop())
+
+    async def pull(self, token: str) -> str:
+        """Open the websocket of the session `token` names (from the page, or made up: the
+        server then builds the session for the websocket alone) and pull its document:
+        the PULL-DOC-REPLY's content."""
+        parts = urlsplit(self.url)
         headers = {"Origin": f"{parts.scheme}://{parts.netloc}",
-                   "Sec-WebSocket-Protocol": f"bokeh, {m.group(1)}"}
+                   "Sec-WebSocket-Protocol": f"bokeh, {token}"}
         if self.cookies:
             headers["Cookie"] = "; ".join(f"{k}={v}" for k, v in self.cookies.items())
         ws = "wss" if parts.scheme == "https" else "ws"
@@ -214,18 +229,8 @@ class Session:
         for _ in range(100):  # the server may send patches (e.g. the URL) before the reply
             header, content = await asyncio.wait_for(self._read(), 60)
             if header.get("msgtype") == "PULL-DOC-REPLY":
-                break
-        else:
-            raise ConnectionError("no PULL-DOC-REPLY")
-        self.slider, self.force, self.start, self.end = find_targets(json.loads(content),
-                                                                      self.slider_name)
-        self.force_ref = f'"model":{{"id":"{self.force}"}}'
-        self.value = None
-        # what BokehJS sends once it has rendered the document: Panel counts the session
-        # as loaded from then on (and runs its on-load callbacks)
-        await self._send("PATCH-DOC", {"events": [DOCUMENT_READY]})
-        self.alive = True
-        self._reader = asyncio.create_task(self._read_loop())
+                return content
+        raise ConnectionError("no PULL-DOC-REPLY")
 
     async def _read(self) -> tuple[dict, str]:
         """One whole message: (header, content text); buffers are read and dropped."""

@@ -192,24 +192,11 @@ def test_a_session_built_for_its_websocket_alone_has_the_servers_stylesheets(ser
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from bokeh.util.token import generate_jwt_token, generate_session_id
     from load_test import Session
-    from tornado.httpclient import HTTPRequest
-    from tornado.websocket import websocket_connect
 
     async def pull() -> str:
-        host = url.split("/")[2]
-        token = generate_jwt_token(generate_session_id())  # a session no page was made for
-        req = HTTPRequest(f"ws://{host}/main/ws", headers={
-            "Origin": f"http://{host}", "Sec-WebSocket-Protocol": f"bokeh, {token}"})
         session = Session(url, AsyncHTTPClient(), 10.0, None)
-        session.conn = await websocket_connect(req, max_message_size=64 << 20)
-        try:
-            header, _ = await asyncio.wait_for(session._read(), 60)
-            assert header["msgtype"] == "ACK"
-            await session._send("PULL-DOC-REQ", {})
-            while True:
-                header, content = await asyncio.wait_for(session._read(), 60)
-                if header["msgtype"] == "PULL-DOC-REPLY":
-                    return content
+        try:  # a session no page was made for
+            return await session.pull(generate_jwt_token(generate_session_id()))
         finally:
             session.close()
 
