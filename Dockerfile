@@ -67,8 +67,7 @@ LABEL org.opencontainers.image.title="zharii-explorer" \
 # read-only: the only writes are numba's compiled-kernel cache, under /tmp (a tmpfs
 # in docker/compose.yaml).  MALLOC_*: glibc's allocator keeps two heaps (not one per
 # thread) and hands freed memory above 128 KiB back to the system instead of keeping
-# it (the server's RSS under a long session of slider moves grows more slowly; see
-# docs/deploy.md, "Memory").  BOKEH_VALIDATE_DOC=false: Bokeh does not run its model
+# it (see docs/deploy.md, "Memory").  BOKEH_VALIDATE_DOC=false: Bokeh does not run its model
 # checks (which only log warnings) on every new session's document, a tenth of a page
 # load; `make serve` and the tests keep them on.
 ENV PATH=/opt/venv/bin:$PATH \
