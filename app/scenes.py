@@ -140,7 +140,8 @@ def add_legend(fig, entries: list[tuple[str, list[GlyphRenderer]]], place: str =
         proxy.js_on_change("visible", toggle)
     items = [LegendItem(label=label, renderers=[proxy])
              for (label, _), proxy in zip(entries, proxies, strict=True)]
-    legend = Legend(items=items, location=location, click_policy="hide")
+    legend = Legend(items=items, location=location, click_policy="hide",
+                    orientation="horizontal" if place in ("above", "below") else "vertical")
     fig.add_layout(legend, place)
     return legend
 
@@ -234,8 +235,9 @@ class TractionScene(Scene):
                     for col in ("upper", "lower")]
         self.line = draw(fig, Line, self.source, x="r", y="traction", color="black",
                          line_width=3, level=FRAME_LEVEL)
+        # beside the frame: inside it, it covered the stick zone and the rim
         add_legend(fig, [("stick zone", [stick]), ("±μ p", envelope), ("τᵤ", [self.line])],
-                   place="center")
+                   place="right")
         # values at the current tau, drawn on the canvas: a text pane beside the plot
         # would make the browser lay out the whole page again on every frame
         self.caption = Label(x=0, y=0, text="", text_align="right", text_baseline="top",
@@ -260,8 +262,9 @@ class TractionScene(Scene):
         p_max = float(c.pressure(0.0, math.pi / 2))
         self.r_grid = np.linspace(-1.05 * a_max, 1.05 * a_max, PROFILE_POINTS)
         self.figure.x_range.start, self.figure.x_range.end = -1.1 * a_max, 1.1 * a_max
-        self.figure.y_range.start, self.figure.y_range.end = -1.6 * p_max, 1.6 * p_max
-        self.caption.x, self.caption.y = 1.08 * a_max, 1.55 * p_max
+        # room above the largest pressure for the caption's two lines, below it for the phase
+        self.figure.y_range.start, self.figure.y_range.end = -1.6 * p_max, 2.4 * p_max
+        self.caption.x, self.caption.y = 1.08 * a_max, 2.35 * p_max
         self.phase_label.x, self.phase_label.y = 0.0, -1.55 * p_max  # bottom centre
 
     def profiles(self, c: Contact, taus: np.ndarray) -> dict[str, np.ndarray]:

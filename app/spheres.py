@@ -167,8 +167,10 @@ class SpheresScene(Scene):
         for name, fill in (("spheres_upper", "#d9d9d9"), ("spheres_lower", "#bfbfbf")):
             draw(fig, Patch, s[name], x="x", y="y", fill_color=fill, line_color="black",
                  line_width=2, level=FRAME_LEVEL)
+        # the line the lower sphere's centre moves along, over the sphere (it lies inside)
         draw(fig, Segment, self.still, x0="x0", y0="y0", x1="x1", y1="y1",
-             line_dash="dotdash", color="#555555", line_width=2)
+             line_dash="dotdash", color="#222222", line_width=2, level=FRAME_LEVEL,
+             name="spheres_drive_line")
         draw(fig, Segment, s["spheres_patch"], x0="x0", y0="y", x1="x1", y1="y",
              color="color", line_width=9, level=FRAME_LEVEL)
         draw(fig, Segment, s["spheres_forces"], x0="x0", y0="y0", x1="x1", y1="y1",

@@ -467,6 +467,34 @@ def test_the_motor_card_opens_computes_its_curve_and_drives_the_scenes(browser, 
     page.close()
 
 
+#: JavaScript: the page box of the figure titled `title`.
+JS_FIGURE_BOX = """(title) => {
+  const v = __views((v) => v.model != null && v.model.type === "Figure"
+      && v.model.title != null && v.model.title.text === title)[0];
+  const r = v.el.getBoundingClientRect();
+  return {x: r.x, y: r.y, width: r.width, height: r.height};
+}"""
+
+
+def test_the_drive_line_is_painted_over_the_lower_sphere(browser, url) -> None:
+    """The line the lower sphere's centre moves along lies inside that sphere: it is
+    painted over it (hiding the line changes the plot's pixels)."""
+    page, console = open_explorer(browser, url)
+    clip = page.evaluate(JS_FIGURE_BOX, "Two spheres in section")
+
+    def shot(visible: bool) -> bytes:
+        page.evaluate("(v) => { Bokeh.documents[0].get_model_by_name("
+                      "'spheres_drive_line').visible = v; }", visible)
+        page.wait_for_timeout(700)
+        return page.screenshot(clip=clip)
+
+    shown, hidden, again = shot(True), shot(False), shot(True)
+    assert shown == again  # (the scene is still: only the line changed)
+    assert shown != hidden, "the drive line is not painted"
+    assert errors(console) == []
+    page.close()
+
+
 def test_the_papers_figures_in_full_are_drawn(browser, url) -> None:
     """Fig. 9's two panels (the v2 step at tau1 in the drawn data), Fig. 4a above 4b, and
     Fig. 6's six profiles one click away, each painted on its own canvas."""
