@@ -79,6 +79,10 @@ def presentation(ex: Explorer) -> pn.Column:
     for fig in (spheres, traction, disc, force):
         fig.sizing_mode, fig.margin = "stretch_both", 0
         fig.min_width = fig.max_width = None
+    # equal scales: their frames are their boxes less a fixed rim, so not aligned with
+    # their neighbours' frames (BokehJS aligns them by default: the traction plot's
+    # legend row above its frame would push the disc's frame down, out of its aspect)
+    spheres.frame_align = disc.frame_align = False
     # the scenes' box is the size container: 100cqh is its height, 100cqw its width
     spheres.styles = equal_scales_box(aspect(spheres), SPHERES_RIM, "100cqh",
                                       f"{100 * SPHERES_MAX_WIDTH}cqw")

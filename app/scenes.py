@@ -140,8 +140,9 @@ def add_legend(fig, entries: list[tuple[str, list[GlyphRenderer]]], place: str =
         proxy.js_on_change("visible", toggle)
     items = [LegendItem(label=label, renderers=[proxy])
              for (label, _), proxy in zip(entries, proxies, strict=True)]
+    row = place in ("above", "below")
     legend = Legend(items=items, location=location, click_policy="hide",
-                    orientation="horizontal" if place in ("above", "below") else "vertical")
+                    orientation="horizontal" if row else "vertical", spacing=16 if row else 3)
     fig.add_layout(legend, place)
     return legend
 
@@ -227,7 +228,7 @@ class TractionScene(Scene):
     def __init__(self) -> None:
         super().__init__({k: [] for k in ("r", "traction", "upper", "lower", "stick_lo",
                                           "stick_hi")})
-        fig = new_figure("Traction profile", "r / a*", "traction  τᵤ / (μ p*)")
+        fig = new_figure("Traction profile", "r / a*", "traction  τᵤ / (μ p*)", height=390)
         stick = draw(fig, VArea, self.source, x="r", y1="stick_lo", y2="stick_hi",
                      fill_color=STICK_COLOR, fill_alpha=0.25, level=FRAME_LEVEL)
         envelope = [draw(fig, Line, self.source, x="r", y=col, line_dash="dashed",
@@ -235,9 +236,10 @@ class TractionScene(Scene):
                     for col in ("upper", "lower")]
         self.line = draw(fig, Line, self.source, x="r", y="traction", color="black",
                          line_width=3, level=FRAME_LEVEL)
-        # beside the frame: inside it, it covered the stick zone and the rim
+        # in one row above the frame (inside it, it covered the stick zone and the rim;
+        # beside it, it left a phone too narrow a frame)
         add_legend(fig, [("stick zone", [stick]), ("±μ p", envelope), ("τᵤ", [self.line])],
-                   place="right")
+                   place="above")
         # values at the current tau, drawn on the canvas: a text pane beside the plot
         # would make the browser lay out the whole page again on every frame
         self.caption = Label(x=0, y=0, text="", text_align="right", text_baseline="top",
