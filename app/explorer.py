@@ -143,7 +143,8 @@ class Explorer(param.Parameterized):
         self.panes = [pn.pane.Bokeh(sizing_mode="stretch_width") for _ in self.tabbed]
         self.tabs = pn.Tabs(*zip(("T(τ) (Fig. 7)", "Impulse (Fig. 8)", "Radii (Fig. 4b)",
                                   "Centre motion (Fig. 9)"), self.panes, strict=True),
-                            dynamic=True, sizing_mode="stretch_width")
+                            dynamic=True, sizing_mode="stretch_width",
+                            stylesheets=[layout.TAB_ROW_CSS])
         self._show_figure(0)
         self._stale: set[Scene] = set()
         self.tabs.param.watch(self._on_tab, ["active"])
@@ -452,9 +453,9 @@ class Explorer(param.Parameterized):
         self.message = pn.pane.HTML("", visible=False, sizing_mode="stretch_width",
                                     name="query_message", styles=layout.MESSAGE_STYLE)
         self.show_messages(self.messages)
-        self.formulas = pn.pane.LaTeX(  # (long equations scroll)
+        self.formulas = pn.pane.LaTeX(  # (scaled down to fit a narrow card; else scroll)
             "", renderer="katex", sizing_mode="stretch_width", styles={"overflow-x": "auto"},
-            tags=["formulas"])
+            stylesheets=[layout.FORMULA_CSS], tags=["formulas"])
         self.downloads = {
             key: pn.widgets.FileDownload(callback=lambda key=key: self.csv_file(key),
                                          filename=f"{key}.csv", label=f"CSV: {key}",

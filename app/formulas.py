@@ -1,6 +1,7 @@
 # ruff: noqa: E501  (LaTeX lines are kept whole)
 """The formulas of each contact phase, as HTML with $$...$$ LaTeX (rendered in the
-browser by KaTeX, which Panel bundles: `pn.pane.LaTeX`).
+browser by KaTeX, which Panel bundles: `pn.pane.LaTeX`), one equation per line so that
+a narrow card stacks them.
 
 Text only: these are the paper's equations (Zharii 1996, restated in docs/physics.md),
 shown beside the plots; nothing here is evaluated.
@@ -13,7 +14,9 @@ from html import escape
 from core import PHASE_NAMES, Phase
 
 _COMMON = r"""
-$$p(r) = \frac{4G}{(1-\nu)\pi R}\sqrt{a^2 - r^2},\qquad a^2 = \tfrac{R}{2} H(\sin\tau - \sin\tau_0)$$
+$$p(r) = \frac{4G}{(1-\nu)\pi R}\sqrt{a^2 - r^2}$$
+
+$$a^2 = \tfrac{R}{2} H(\sin\tau - \sin\tau_0)$$
 """
 
 #: Per phase: when it holds and the equations (the phase's name comes from core).
@@ -36,8 +39,9 @@ $$\tau_u(r) = -\frac{4\mu G}{(1-\nu)\pi R}\left[\sqrt{a^2-r^2} - 2\sqrt{b^2-r^2}
 
 $$\tau_u(r) = -\mu p(r) \quad (b \lt r \lt a)$$
 
-$$b^2 = \frac{\psi+1}{2} \frac{RH}{2} (\sin\tau - \sin\tau_1),\qquad
-\sin\tau_1 = 1 - \frac{2(1-\sin\tau_0)}{\psi+1}$$
+$$b^2 = \frac{\psi+1}{2} \frac{RH}{2} (\sin\tau - \sin\tau_1)$$
+
+$$\sin\tau_1 = 1 - \frac{2(1-\sin\tau_0)}{\psi+1}$$
 
 $$T = T_0\left[2\left(\frac{\psi+1}{2}\right)^{3/2}(\sin\tau - \sin\tau_1)^{3/2} - (\sin\tau - \sin\tau_0)^{3/2}\right]$$
 """),

@@ -78,6 +78,15 @@ HEADING_CSS = "h1 { font-size: inherit; font-weight: inherit; margin: 0; }"
 #: The sidebar's headings (<h2>, the level below the page's title) at the size of an <h3>.
 SUBHEADING_CSS = "h2 { font-size: 1.17em; }"
 
+#: Tabs' stylesheet: their titles wrap onto a second row on a narrow screen (BokehJS
+#: scrolls the row sideways, hiding the last titles on a phone).
+TAB_ROW_CSS = ".bk-headers-wrapper { flex-wrap: wrap; }"
+
+#: The formula card's stylesheet: an equation's type (KaTeX's 1.21 em) shrinks with the
+#: card's width below about 500 px, so that the longest (25 em wide) fits a phone's card.
+FORMULA_CSS = (":host { container-type: inline-size; }"
+               " .katex-display > .katex { font-size: min(1.21em, 3.9cqw); }")
+
 
 def heading() -> pn.pane.HTML:
     """The page's one <h1>, `TITLE`, in the header bar's type."""

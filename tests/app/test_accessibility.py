@@ -207,8 +207,8 @@ JS_UNFOCUSED = """() => {
 def tab_stops(page, limit: int = 120) -> list[dict]:
     """Press Tab from the top of the page (a click on its title) until the keyboard comes
     back to where it began; what `JS_FOCUSED` says of each stop."""
-    page.evaluate("() => { window.__stops = []; }")
-    page.mouse.click(1, 1)
+    page.evaluate("() => { window.__stops = []; window.scrollTo(0, 0); }")
+    page.mouse.click(1, 1)  # (the page's title, once scrolled to the top)
     stops: list[dict] = []
     for _ in range(limit):
         page.keyboard.press("Tab")

@@ -649,12 +649,13 @@ JS_OVERFLOWS = """() => {
 }"""
 
 
-@pytest.mark.parametrize(("width", "height"), [(1024, 768), (1280, 720), (1920, 1080),
-                                               (2560, 1440)])
-def test_nothing_is_clipped_from_1024_to_2560_wide(browser, url, width: int,
-                                                    height: int) -> None:
+@pytest.mark.parametrize(("width", "height"), [(390, 844), (768, 1024), (1024, 768),
+                                               (1280, 720), (1920, 1080), (2560, 1440)])
+def test_nothing_is_clipped_from_a_phone_to_2560_wide(browser, url, width: int,
+                                                      height: int) -> None:
     """The formulas (partial stick's, the longest), the tables and every card's text fit
-    their cards at every screen size: nothing overflows or is scrolled out of view."""
+    their cards at every screen size, a phone's and a tablet's included: nothing
+    overflows or is scrolled out of view."""
     page, console = open_explorer(browser, url, width=width, height=height)
     page.wait_for_function("() => document.querySelectorAll('*').length > 0")
     page.wait_for_timeout(1500)  # KaTeX typeset
