@@ -15,8 +15,7 @@ If `core.numerics` (or a method) is missing the scene shows a note instead.
 
 from __future__ import annotations
 
-import csv
-import math
+import io
 import threading
 from concurrent.futures import Future, ThreadPoolExecutor
 from functools import cache, partial
@@ -24,11 +23,25 @@ from pathlib import Path
 
 import numpy as np
 import panel as pn
-from bokeh.models import ColorBar, ColumnDataSource, LogColorMapper, LogTicker, Range1d
-from bokeh.palettes import Viridis256
+from bokeh.models import ColumnDataSource
 from panel.io import hold
 
-from app.scenes import CURVE_POINTS, TOOLS, fit_range, new_figure, style_figure
+from app.benchmark_charts import (
+    STABILITY_FIELDS,
+    STABILITY_NOTE,
+    STYLE,
+    SpeedAccuracyData,
+    StabilityData,
+    colour_bar,
+    error_mapper,
+    map_cells,
+    read_rows,
+    speed_accuracy_chart,
+    speed_accuracy_data,
+    stability_data,
+    stability_figure,
+)
+from app.scenes import CURVE_POINTS, fit_range, new_figure, style_figure
 from app.widgets import LabelledCheckbox
 from core import Contact
 
@@ -39,8 +52,8 @@ except ImportError:  # the app works without the numerics package
 
 RESULTS = Path(__file__).resolve().parent.parent / "benchmarks" / "results"
 DEFAULT_METHODS = ("mdr", "lammps_mindlin")
-PALETTE = ("#D55E00", "#0072B2", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#F0E442",
-           "#000000", "#999999", "#882255")
+#: The colour of a method the charts have no style for.
+OTHER_COLOR = "#882255"
 
 
 #: Requests waiting for the shared worker, over all sessions of this process.
@@ -74,25 +87,23 @@ def available_methods() -> dict[str, str]:
 
 
 @cache
-def read_csv(path: Path) -> dict[str, np.ndarray] | None:
-    """Columns of a CSV file (numeric where possible), or None if it is absent.
+def speed_accuracy() -> SpeedAccuracyData | None:
+    """The views of speed_accuracy.csv, once per process (None if the file is absent)."""
+    path = RESULTS / "speed_accuracy.csv"
+    return speed_accuracy_data(read_rows(path)) if path.exists() else None
 
-    Read once per process (the files ship with the app); callers must not modify the
-    arrays."""
-    if not path.exists():
-        return None
-    with path.open(newline="") as f:
-        rows = list(csv.DictReader(f))
-    if not rows:
-        return None
-    out: dict[str, np.ndarray] = {}
-    for key in rows[0]:
-        col = [r[key] for r in rows]
-        try:
-            out[key] = np.array([float(x) for x in col])
-        except ValueError:
-            out[key] = np.array(col)
-    return out
+
+@cache
+def stability() -> StabilityData | None:
+    """The cells of stability_map.csv, once per process (None if the file is absent)."""
+    path = RESULTS / "stability_map.csv"
+    return stability_data(read_rows(path)) if path.exists() else None
+
+
+def results_download(name: str, label: str) -> pn.widgets.FileDownload:
+    """A button that downloads benchmarks/results/`name` (read when clicked)."""
+    return pn.widgets.FileDownload(callback=lambda: io.BytesIO((RESULTS / name).read_bytes()),
+                                   filename=name, label=label, width=260)
 
 
 class MethodsScene:
@@ -240,8 +251,7 @@ class MethodsScene:
             "xs": [np.asarray(r.tau, float) for r in results],
             "ys": [np.asarray(r.T, float) for r in results],
             "label": [r.method for r in results],
-            "color": [PALETTE[list(self.methods).index(r.method) % len(PALETTE)]
-                      for r in results],
+            "color": [STYLE.get(r.method, (OTHER_COLOR,))[0] for r in results],
         }
         self.table.object = ("| method | resolution | max abs(T − T_exact) / T₀ | "
                              "impulse-ratio error | time |\n|---|---|---|---|---|\n"
@@ -251,60 +261,63 @@ class MethodsScene:
 
     # ---------------------------------------------------------- benchmarks
 
-    def speed_accuracy_figure(self):
-        """Wall time against error per method, from speed_accuracy.csv (None if absent)."""
-        data = read_csv(RESULTS / "speed_accuracy.csv")
-        if data is None or "err" not in data or "wall_time" not in data:
-            return None
-        fig = new_figure("Speed against accuracy (benchmarks/results)", "wall time (s)",
-                         "max error of T / T₀", x_axis_type="log", y_axis_type="log",
-                         x_range=Range1d(1e-7, 10), y_range=Range1d(1e-17, 10))
-        methods = list(dict.fromkeys(data["method"].tolist()))
-        for i, name in enumerate(methods):
-            sel = (data["method"] == name) & (data["err"] > 0) & (data["wall_time"] > 0)
-            if sel.any():
-                fig.scatter(data["wall_time"][sel], np.maximum(data["err"][sel], 1e-17),
-                            color=PALETTE[i % len(PALETTE)], size=7, alpha=0.6,
-                            legend_label=name)
-        fig.legend.location = "bottom_left"
-        fig.legend.label_text_font_size = "10pt"
-        style_figure(fig)
-        fig.height = 420
-        return fig
+    def speed_accuracy_chart(self) -> list:
+        """Time per contact against error (benchmarks/methods.py's chart), one view at a
+        time: a selector (all cases, a regime or a case; relative or absolute error),
+        the compiled peers with the closed form, the quadrature check, and the numbers
+        behind them (speed_accuracy.csv). Empty without the results file."""
+        data = speed_accuracy()
+        if data is None:
+            return []
+        chart = speed_accuracy_chart(data, sizing_mode="stretch_width", min_width=300,
+                                     peers_height=560, checks_height=320)
+        for fig in (chart.peers, chart.checks):
+            style_figure(fig)
+            fig.legend.label_text_font_size = "11pt"
+        view = pn.widgets.Select(label="View (time: median over the cases shown; error: "
+                                 "worst)", options=data.keys, value=data.keys[0],
+                                 sizing_mode="stretch_width")
+        view.param.watch(lambda event: chart.show(event.new), "value")
+        self.speed_view, self.speed_chart = view, chart
+        return [pn.pane.Markdown("### Speed against accuracy (`benchmarks/methods.py`)"),
+                view, pn.pane.Bokeh(chart.peers, sizing_mode="stretch_width"),
+                pn.pane.Bokeh(chart.checks, sizing_mode="stretch_width"),
+                results_download("speed_accuracy.csv", "CSV: speed against accuracy")]
 
-    def stability_figure(self):
-        """Error over (psi, tau0) for every method, from stability_map.csv (None if absent)."""
-        data = read_csv(RESULTS / "stability_map.csv")
-        if data is None or "err" not in data:
-            return None
-        methods = list(dict.fromkeys(data["method"].tolist()))
-        psis = np.unique(data["psi"])
-        tau0s = np.unique(data["tau0"])
-        src = ColumnDataSource({
-            "x": [math.log10(p) for p in data["psi"]],
-            "y": [tau0s.tolist().index(t) for t in data["tau0"]],
-            "method": [methods.index(m) for m in data["method"]],
-            "err": np.maximum(data["err"], 1e-17),
-        }, name="stability")
-        # one row of tiles per method: y = method index + tau0 row / rows
-        rows = len(tau0s)
-        src.data["y"] = [m + (y + 0.5) / rows for m, y in
-                         zip(src.data["method"], src.data["y"], strict=True)]
-        mapper = LogColorMapper(palette=Viridis256, low=1e-16, high=1.0)
-        dx = float(np.min(np.diff(np.log10(psis)))) if psis.size > 1 else 1.0
-        fig = new_figure("Stability map: error over ψ (x) and τ₀ (rows) per method", "log₁₀ ψ",
-                         "method", x_range=Range1d(math.log10(psis[0]) - dx,
-                                                  math.log10(psis[-1]) + dx),
-                         y_range=Range1d(0, len(methods)), height=60 + 34 * len(methods),
-                         tools=TOOLS + ",hover", tooltips=[("error", "@err{0.0e}")])
-        fig.rect("x", "y", width=dx, height=1 / rows, source=src,
-                 fill_color={"field": "err", "transform": mapper}, line_color=None)
-        fig.yaxis.ticker = [i + 0.5 for i in range(len(methods))]
-        fig.yaxis.major_label_overrides = {i + 0.5: m for i, m in enumerate(methods)}
-        fig.add_layout(ColorBar(color_mapper=mapper, ticker=LogTicker(), width=12,
-                                title="error"), "right")
+    def stability_map(self) -> list:
+        """The stability map (benchmarks/stability_map.py's) of one method at a time,
+        with selectors for the method and the quantity, and the numbers behind it
+        (stability_map.csv). Empty without the results file."""
+        data = stability()
+        if data is None:
+            return []
+        mapper = error_mapper(data)
+        method = pn.widgets.Select(
+            label="Method (at its fixed resolution)", sizing_mode="stretch_width",
+            options={f"{m} (resolution {data.resolution[m]})": m for m in data.methods},
+            value="mdr" if "mdr" in data.methods else data.methods[0])
+        quantity = pn.widgets.Select(label="Quantity", options=STABILITY_FIELDS,
+                                     sizing_mode="stretch_width")
+        fig, source = stability_figure(data, method.value, mapper, quantity.value,
+                                       sizing_mode="stretch_width", min_width=300,
+                                       height=480, tools="pan,wheel_zoom,reset,save")
+        fig.title.text = "Stability map: error over (ψ, τ₀)"
+        fig.add_layout(colour_bar(mapper), "right")
         style_figure(fig)
-        return fig
+
+        def redraw(_) -> None:
+            source.data = map_cells(data, method.value, quantity.value)
+
+        method.param.watch(redraw, "value")
+        quantity.param.watch(redraw, "value")
+        self.stability_controls, self.stability_source = (method, quantity), source
+        self.stability_plot = fig
+        return [pn.pane.Markdown("### Stability map (`benchmarks/stability_map.py`)"),
+                pn.Row(method, quantity, sizing_mode="stretch_width"),
+                pn.pane.Bokeh(fig, sizing_mode="stretch_width"),
+                pn.pane.HTML(STABILITY_NOTE.format(high=data.high),
+                             sizing_mode="stretch_width"),
+                results_download("stability_map.csv", "CSV: stability map")]
 
     def view(self) -> pn.Card:
         """The scene: a collapsed card, filled (`_build`, `_body`) when first opened."""
@@ -321,10 +334,6 @@ class MethodsScene:
                     self.live, self.status, pn.pane.Bokeh(self.figure), self.table,
                     pn.pane.Markdown("Methods: " + "; ".join(
                         f"**{k}**: {v}" for k, v in self.methods.items()))]
-        charts = [f for f in (self.speed_accuracy_figure(), self.stability_figure())
-                  if f is not None]
-        if charts:
-            body += [pn.pane.Bokeh(f, sizing_mode="stretch_width") for f in charts]
-        else:
-            body.append(pn.pane.Markdown("_No benchmark results in benchmarks/results._"))
-        return body
+        charts = self.speed_accuracy_chart() + self.stability_map()
+        return body + (charts or [pn.pane.Markdown(
+            "_No benchmark results in benchmarks/results._")])

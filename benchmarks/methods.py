@@ -57,20 +57,25 @@ import numpy as np  # noqa: E402
 from results_csv import read_csv, write_csv  # noqa: E402
 from tqdm import tqdm  # noqa: E402
 
+from app.benchmark_charts import (  # noqa: E402
+    CHECKS,
+    PEERS,
+    REGIMES,
+    label,
+    speed_accuracy_chart,
+    speed_accuracy_data,
+)
 from core import Contact, curve  # noqa: E402
 from core.numerics import MethodResult, Params, annulus, dem, mdr, quadrature  # noqa: E402
 from core.numerics.metrics import errors  # noqa: E402
 
 PSIS = [0.4, 1.0, 2.414, 28.35, 1000.0]
 TAU0S = [np.pi / 6, 1.5, -0.9]
-REGIMES = ["psi <= 1", "psi > 1", "grazing", "preload"]
 THRESHOLDS = [1e-2, 1e-4, 1e-6, 1e-9]
 WINDOW = 2e-3
 REPEATS = 5
 CLOSED_FORM_POINTS = 200
 DEM = list(dem.MODELS)
-PEERS = ["mdr", "annulus", *DEM]
-CHECKS = ["quad", "gauss_legendre"]
 MDR_SPRINGS = [4, 6, 8, 12, 16, 24, 32, 48, 64, 100, 140, 200, 280, 400, 560, 800, 1600,
                3200]
 MDR_STEP_FACTORS = [0.25, 0.5, 1.0, 2.0, 4.0]
@@ -288,13 +293,13 @@ def compile_times() -> dict[str, dict[str, float]]:
     """Cold compile (empty numba cache, fresh process) and cached first call (fresh
     process, the repository's cache) of each kernel family, in seconds."""
     result: dict[str, dict[str, float]] = {}
-    for label, cache in (("cold compile", tempfile.mkdtemp()), ("cached first call", None)):
+    for kind, cache in (("cold compile", tempfile.mkdtemp()), ("cached first call", None)):
         env = dict(os.environ)
         if cache:
             env["NUMBA_CACHE_DIR"] = cache
         text = subprocess.run([sys.executable, "-c", _COLD], cwd=ROOT, env=env, check=True,
                               capture_output=True, text=True).stdout
-        result[label] = json.loads(text.strip().splitlines()[-1])
+        result[kind] = json.loads(text.strip().splitlines()[-1])
     return result
 
 
@@ -331,12 +336,6 @@ def fastest(rows: list[dict], methods: list[str], case: tuple[float, float], key
     ok = [r for r in rows if r["method"] in methods and (r["psi"], r["tau0"]) == case
           and r[key] <= thr]
     return min(ok, key=lambda r: r["wall_time"]) if ok else None
-
-
-def label(r: dict) -> str:
-    if r["method"] == "mdr":
-        return f"mdr N={r['resolution']} M={r['steps']}"
-    return f"{r['method']} {r['resolution']}"
 
 
 def per_case(rows: list[dict], key: str, methods: list[str]) -> list[dict]:
@@ -560,164 +559,30 @@ def markdown(rows: list[dict], head: list[dict], compile_info: dict | None,
 
 # ------------------------------------------------------------------ the chart
 
-STYLE: dict[str, tuple[str, str]] = {  # Okabe-Ito colours, one marker per method
-    "mdr": ("#0072B2", "circle"),
-    "annulus": ("#D55E00", "square"),
-    "lammps_mindlin": ("#E69F00", "triangle"),
-    "lammps_mindlin_force": ("#56B4E9", "inverted_triangle"),
-    "lammps_mindlin_rescale": ("#009E73", "diamond"),
-    "lammps_mindlin_rescale_force": ("#CC79A7", "hex"),
-    "lammps_linear_history": ("#F0E442", "square_pin"),
-    "liggghts_history": ("#999999", "triangle_pin"),
-    "direnzo": ("#000000", "circle_x"),
-    "quad": ("#0072B2", "circle"),
-    "gauss_legendre": ("#D55E00", "square"),
-}
-FLOOR = 1e-17
-
-
-def pareto(points: list[tuple[float, float, str]]) -> list[tuple[float, float, str]]:
-    """The points (time, error, label) no other point beats in both time and error."""
-    front, best = [], np.inf
-    for t, e, lab in sorted(points):
-        if e < best:
-            front.append((t, e, lab))
-            best = e
-    return front
-
-
-def views(rows: list[dict]) -> dict[str, dict]:
-    """Per view (regime, all, or one case) and error kind: per method, all points and
-    the Pareto front (time: median over the view's cases, error: worst)."""
-    cases = sorted({(r["psi"], r["tau0"]) for r in rows}, key=lambda c: (c[1], c[0]))
-    selections: dict[str, list[dict]] = {"all cases": rows}
-    for reg in REGIMES:
-        selections[f"regime: {reg}"] = [r for r in rows if r["regime"] == reg]
-    for p, t in cases:
-        selections[f"case: psi = {p:g}, tau0 = {t:.4g} ({regime(p, t)})"] = [
-            r for r in rows if (r["psi"], r["tau0"]) == (p, t)]
-    out = {}
-    for title, sel in selections.items():
-        for key, kind in (("err_rel", "relative"), ("err", "absolute")):
-            data: dict[str, dict] = {}
-            groups: dict[tuple, list[dict]] = {}
-            for r in sel:
-                groups.setdefault((r["method"], r["resolution"], r["steps"]), []).append(r)
-            for (name, _, _), rs in groups.items():
-                t = float(np.median([r["wall_time"] for r in rs]))
-                e = max(float(np.max([r[key] for r in rs])), FLOOR)
-                d = data.setdefault(name, dict(points=[]))
-                d["points"].append((t, e, label(rs[0])))
-            view = {}
-            for name, d in data.items():
-                pts = d["points"]
-                front = pareto(pts)
-                view[name] = dict(
-                    all=dict(x=[p[0] for p in pts], y=[p[1] for p in pts],
-                             run=[p[2] for p in pts]),
-                    front=dict(x=[p[0] for p in front], y=[p[1] for p in front],
-                               run=[p[2] for p in front]))
-            out[f"{title} | {kind} error"] = view
-    return out
-
 
 def chart(rows: list[dict], path: Path) -> None:
+    """The chart of ``app.benchmark_charts`` as a stand-alone page: every view in the
+    page, its selector run in the browser."""
     from bokeh.io import save
-    from bokeh.layouts import column, row
-    from bokeh.models import (
-        BoxAnnotation,
-        ColumnDataSource,
-        CustomJS,
-        Div,
-        HoverTool,
-        Label,
-        Legend,
-        LegendItem,
-        Select,
-    )
-    from bokeh.plotting import figure
+    from bokeh.layouts import column
+    from bokeh.models import CustomJS, Div, Select
     from bokeh.resources import INLINE
 
-    all_views = views(rows)
-    keys = list(all_views)
-    first = keys[0]
-    cf_rows = [r for r in rows if r["method"] == "closed_form"]
-    floor = max(max(r["err_rel"] for r in cf_rows), max(r["err"] for r in cf_rows))
-
-    def make(title: str, methods: list[str], height: int):
-        fig = figure(title=title, x_axis_type="log", y_axis_type="log", width=1100,
-                     height=height, x_axis_label="time per contact (s)",
-                     y_axis_label="error (worst over the cases shown)",
-                     x_range=(1e-7, 10), y_range=(FLOOR / 2, 10))
-        fig.add_layout(BoxAnnotation(bottom=FLOOR / 2, top=floor, fill_color="#bbbbbb",
-                                     fill_alpha=0.35, line_color=None))
-        fig.add_layout(Label(x=1.5e-7, y=FLOOR / 2, y_offset=4, text_font_size="9pt",
-                             text=f"float64 floor: below {floor:.1e} (the worst closed-form "
-                             "error against 50-digit mpmath) errors are not resolved"))
-        sources, items = {}, []
-        for name in methods:
-            colour, marker = STYLE[name]
-            view = all_views[first].get(name, dict(all=dict(x=[], y=[], run=[]),
-                                                   front=dict(x=[], y=[], run=[])))
-            faint = ColumnDataSource(view["all"])
-            front = ColumnDataSource(view["front"])
-            r1 = fig.scatter("x", "y", source=faint, marker=marker, color=colour, size=6,
-                             alpha=0.25)
-            r2 = fig.step("x", "y", source=front, color=colour, line_width=2, mode="after")
-            r3 = fig.scatter("x", "y", source=front, marker=marker, color=colour, size=9,
-                             line_color="black", line_width=0.5)
-            items.append(LegendItem(label=name, renderers=[r1, r2, r3]))
-            sources[name] = (faint, front)
-        fig.add_tools(HoverTool(tooltips=[("run", "@run"), ("time", "@x{0.00e} s"),
-                                          ("error", "@y{0.0e}")]))
-        return fig, sources, items
-
-    main, main_src, items = make("Compiled peers against the closed form", PEERS, 620)
-    cf_src = ColumnDataSource(dict(x=[], y=[], run=[]))
-    cf = main.scatter("x", "y", source=cf_src, marker="star", size=24, color="black",
-                      fill_color="white", line_width=2)
-    main.text("x", "y", text="run", source=cf_src, x_offset=14, y_offset=-4,
-              text_font_size="10pt", text_font_style="bold")
-    items.insert(0, LegendItem(label="closed form (core.curve)", renderers=[cf]))
-    legend = Legend(items=items, click_policy="hide", label_text_font_size="9pt")
-    main.add_layout(legend, "right")
-    check, check_src, check_items = make("Check of eq 41: quadrature of core's T (needs "
-                                         "the closed form; not a peer)", CHECKS, 360)
-    check.add_layout(Legend(items=check_items, click_policy="hide"), "right")
-
-    cf_data = {}
-    for key in keys:
-        title, kind = key.split(" | ")
-        err_key = "err_rel" if kind.startswith("relative") else "err"
-        if title == "all cases":
-            sel = cf_rows
-        elif title.startswith("regime: "):
-            sel = [r for r in cf_rows if r["regime"] == title[len("regime: "):]]
-        else:
-            sel = [r for r in cf_rows
-                   if f"psi = {r['psi']:g}, tau0 = {r['tau0']:.4g}" in title]
-        cf_data[key] = dict(x=[float(np.median([r["wall_time"] for r in sel]))],
-                            y=[max(max(r[err_key] for r in sel), FLOOR)],
-                            run=["closed form"])
-    cf_src.data = cf_data[first]
-    payload = {k: {m: v for m, v in view.items()} for k, view in all_views.items()}
+    data = speed_accuracy_data(rows)
+    shown = speed_accuracy_chart(data, width=1100)
     select = Select(title="View (time: median over the cases shown; error: worst)",
-                    value=first, options=keys, width=700)
-    empty = dict(x=[], y=[], run=[])
+                    value=data.keys[0], options=data.keys, width=700)
     select.js_on_change("value", CustomJS(
-        args=dict(views=payload, cf=cf_data, cf_src=cf_src,
-                  main={k: list(v) for k, v in main_src.items()},
-                  check={k: list(v) for k, v in check_src.items()}, empty=empty),
+        args=dict(views=data.views, stars=data.closed_form, star=shown.closed_form,
+                  sources={k: list(v) for k, v in shown.sources.items()},
+                  empty=dict(x=[], y=[], run=[])),
         code="""
 const v = views[this.value];
-for (const group of [main, check]) {
-  for (const [name, pair] of Object.entries(group)) {
-    const d = v[name];
-    pair[0].data = d ? d.all : empty;
-    pair[1].data = d ? d.front : empty;
-  }
+for (const [name, [every, front]] of Object.entries(sources)) {
+  every.data = v[name] ? v[name].all : empty;
+  front.data = v[name] ? v[name].front : empty;
 }
-cf_src.data = cf[this.value];
+star.data = stars[this.value];
 """))
     intro = Div(width=1100, text=(
         "<p>One contact from (psi, tau0): T on the method's own times and the impulse ratio. "
@@ -728,8 +593,8 @@ cf_src.data = cf[this.value];
         "Lines: each method's Pareto front (no faster run of it is more accurate); faint "
         "markers: every run. Errors against core (the closed form's own error against "
         "mpmath is the star). Click a legend entry to hide a method.</p>"))
-    save(column(intro, row(select), main, check), filename=str(path), resources=INLINE,
-         title="Speed against accuracy, like for like")
+    save(column(intro, select, shown.peers, shown.checks), filename=str(path),
+         resources=INLINE, title="Speed against accuracy, like for like")
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -1,26 +1,14 @@
-"""The CSV files of benchmarks/results/: one row per run, numbers to 6 significant digits."""
+"""The CSV files of benchmarks/results/: one row per run, numbers to 6 significant digits
+(read back by ``app.benchmark_charts.read_rows``, which the explorer reads them with)."""
 
 from __future__ import annotations
 
 import csv
 from pathlib import Path
 
-TEXT = {"method", "regime", "kind", "peer"}
-INTEGER = {"resolution", "steps", "points", "peer_points", "cf_n", "cf_points"}
+from app.benchmark_charts import read_rows as read_csv
 
-
-def _value(key: str, text: str):
-    if key in TEXT:
-        return text
-    if key in INTEGER:
-        return int(text)
-    return float(text)
-
-
-def read_csv(path: Path) -> list[dict]:
-    """Rows written by ``write_csv`` (numbers back to int / float)."""
-    with path.open() as fh:
-        return [{k: _value(k, v) for k, v in row.items()} for row in csv.DictReader(fh)]
+__all__ = ["read_csv", "write_csv"]
 
 
 def write_csv(rows: list[dict], path: Path, fields: list[str]) -> None:
