@@ -56,6 +56,22 @@ DEFAULT_METHODS = ("mdr", "lammps_mindlin")
 OTHER_COLOR = "#882255"
 
 
+#: The resolutions offered, as factors of each method's interactive default
+#: (`core.numerics.INTERACTIVE_RESOLUTION`), and the most a method is given whose cost
+#: grows faster than its resolution: a solve takes at most ~0.2 s (the annulus at 128
+#: rings; MDR at 6400 springs ~25 ms), so a client's choice bounds the work.
+RESOLUTION_FACTORS = {"¼ ×": 0.25, "½ ×": 0.5, "1 × (default)": 1.0, "2 ×": 2.0,
+                      "4 ×": 4.0, "8 ×": 8.0, "16 ×": 16.0}
+MAX_RESOLUTION = {"annulus": 128}
+
+
+def resolution(name: str, factor: float) -> int:
+    """The resolution of method `name` at `factor` times its interactive default (at
+    most its `MAX_RESOLUTION`)."""
+    n = max(2, round(numerics.INTERACTIVE_RESOLUTION.get(name, 200) * factor))
+    return min(n, MAX_RESOLUTION.get(name, n))
+
+
 #: Requests waiting for the shared worker, over all sessions of this process.
 MAX_QUEUED = 16
 
@@ -134,12 +150,16 @@ class MethodsScene:
             label="Methods", options=list(self.methods),
             value=[m for m in DEFAULT_METHODS if m in self.methods], sizing_mode="stretch_width")
         self.live = LabelledCheckbox(label="Recompute live on every change", value=False)
+        self.resolution = pn.widgets.Select(
+            label="Resolution (× each method's default)", options=RESOLUTION_FACTORS,
+            value=1.0, width=240)
         self.run_button = pn.widgets.Button(label="Run methods", color="primary", width=140)
         self.progress = pn.indicators.Progress(active=False, visible=False, width=200)
         self.status = pn.pane.Markdown("", sizing_mode="stretch_width")
         self.table = pn.pane.Markdown("", sizing_mode="stretch_width")
         self.run_button.on_click(lambda _: self.run())
         self.choice.param.watch(lambda _: self.run(), "value")
+        self.resolution.param.watch(lambda _: self.run(), "value")
 
         fig = new_figure("T / T₀: methods against the closed form", "τ = ωt (rad)", "T / T₀")
         fig.line("tau", "T", source=self.exact, color="black", line_width=4, alpha=0.35,
@@ -207,7 +227,8 @@ class MethodsScene:
         names = list(self.choice.value)
         self.progress.param.update(active=True, visible=True)
         self.status.object = f"computing {', '.join(names) or 'nothing'}…"
-        job = partial(self._solve_all, generation, self._contact, names)
+        job = partial(self._solve_all, generation, self._contact,
+                      {name: resolution(name, self.resolution.value) for name in names})
         if self._doc is None or self._doc.session_context is None:
             job()
             return
@@ -219,13 +240,13 @@ class MethodsScene:
             self._show(generation, self._contact, [],
                        ["the server is busy with other sessions' runs: try again shortly"])
 
-    def _solve_all(self, generation: int, c: Contact, names: list[str]) -> None:
+    def _solve_all(self, generation: int, c: Contact, resolutions: dict[str, int]) -> None:
         results, errors = [], []
-        for name in names:
+        for name, n in resolutions.items():
             if generation != self._generation:
                 return  # a newer request supersedes this one
             try:
-                res = numerics.solve(name, c, numerics.INTERACTIVE_RESOLUTION.get(name, 200))
+                res = numerics.solve(name, c, n)
             except Exception as err:  # a method may be missing or reject parameters
                 errors.append(f"{name}: {err}")
                 continue
@@ -330,7 +351,7 @@ class MethodsScene:
                                   "in this installation; the closed-form scenes above are "
                                   "unaffected.", alert_type="info")]
         else:
-            body = [pn.Row(self.choice, self.run_button, self.progress),
+            body = [pn.Row(self.choice, self.resolution, self.run_button, self.progress),
                     self.live, self.status, pn.pane.Bokeh(self.figure), self.table,
                     pn.pane.Markdown("Methods: " + "; ".join(
                         f"**{k}**: {v}" for k, v in self.methods.items()))]

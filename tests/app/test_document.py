@@ -653,6 +653,24 @@ def test_methods_overlay_holds_what_numerics_computes(ex: Explorer) -> None:
     eq(ex.methods.exact.data["T"], c.tangential_force(c.tau_grid(CURVE_POINTS)))
 
 
+def test_methods_run_at_the_resolution_chosen(ex: Explorer) -> None:
+    """MDR at 16 x its interactive default (6400 springs) is what numerics computes at
+    that resolution; the annulus, whose cost grows faster, stops at 128 rings."""
+    numerics = pytest.importorskip("core.numerics")
+    ex.methods.card.collapsed = False
+    ex.methods.resolution.value = 16.0
+    ex.methods.choice.value = ["mdr", "annulus"]
+    c = contact_of(ex)
+    mdr, annulus = ex.methods.results
+    assert (mdr.resolution, annulus.resolution) == (
+        16 * numerics.INTERACTIVE_RESOLUTION["mdr"], 128)
+    eq(mdr.T, numerics.solve("mdr", c, mdr.resolution).T)
+    eq(ex.methods.source.data["ys"][1], numerics.solve("annulus", c, 128).T)
+    assert f"| mdr | {mdr.resolution} |" in ex.methods.table.object
+    ex.methods.resolution.value = 0.25  # a change of resolution runs again
+    assert ex.methods.results[0].resolution == numerics.INTERACTIVE_RESOLUTION["mdr"] // 4
+
+
 def test_methods_rerun_live_after_a_change(ex: Explorer) -> None:
     pytest.importorskip("core.numerics")
     ex.methods.card.collapsed = False
