@@ -60,8 +60,9 @@ OTHER_COLOR = "#882255"
 #: (`core.numerics.INTERACTIVE_RESOLUTION`), and the most a method is given whose cost
 #: grows faster than its resolution: a solve takes at most ~0.2 s (the annulus at 128
 #: rings; MDR at 6400 springs ~25 ms), so a client's choice bounds the work.
-RESOLUTION_FACTORS = {"¼ ×": 0.25, "½ ×": 0.5, "1 × (default)": 1.0, "2 ×": 2.0,
-                      "4 ×": 4.0, "8 ×": 8.0, "16 ×": 16.0}
+RESOLUTION_FACTORS = {"¼ × default": 0.25, "½ × default": 0.5, "default": 1.0,
+                      "2 × default": 2.0, "4 × default": 4.0, "8 × default": 8.0,
+                      "16 × default": 16.0}
 MAX_RESOLUTION = {"annulus": 128}
 
 
@@ -151,8 +152,7 @@ class MethodsScene:
             value=[m for m in DEFAULT_METHODS if m in self.methods], sizing_mode="stretch_width")
         self.live = LabelledCheckbox(label="Recompute live on every change", value=False)
         self.resolution = pn.widgets.Select(
-            label="Resolution (× each method's default)", options=RESOLUTION_FACTORS,
-            value=1.0, width=240)
+            label="Resolution", options=RESOLUTION_FACTORS, value=1.0, width=200)
         self.run_button = pn.widgets.Button(label="Run methods", color="primary", width=140)
         self.progress = pn.indicators.Progress(active=False, visible=False, width=200)
         self.status = pn.pane.Markdown("", sizing_mode="stretch_width")
@@ -181,11 +181,14 @@ class MethodsScene:
     def _on_collapsed(self, event) -> None:
         if event.new:
             return
-        if not self._built:
+        first = not self._built
+        if first:
             self._build()
         if self._contact is not None:
             with hold():
                 self.update_contact(self._contact)
+            if first and not self.live.value:
+                self.run()  # the methods chosen by default, drawn once on opening
 
     def close(self) -> None:
         """The session ended: drop its waiting request and make a running one stale."""

@@ -690,6 +690,10 @@ def test_methods_computes_nothing_while_collapsed(ex: Explorer) -> None:
     ex.methods.card.collapsed = False  # expanding catches up with the parameters
     c = contact_of(ex)
     eq(ex.methods.exact.data["T"], c.tangential_force(c.tau_grid(CURVE_POINTS)))
+    # and draws the methods chosen by default, once
+    from app.methods import DEFAULT_METHODS
+
+    assert ex.methods.source.data["label"] == list(DEFAULT_METHODS)
     ex.psi_slider.value = 0.7
     c = contact_of(ex)
     eq(ex.methods.exact.data["T"], c.tangential_force(c.tau_grid(CURVE_POINTS)))
