@@ -133,7 +133,7 @@ def main(argv: list[str] | None = None) -> None:
     """Serve the explorer at /main (and / redirecting there) until interrupted."""
     from panel.io.server import get_server
 
-    from core.warm import warm
+    from core.warm import warm_all
 
     args = parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(levelname)s %(message)s")
@@ -146,8 +146,9 @@ def main(argv: list[str] | None = None) -> None:
     log.info("explorer at http://%s:%d%s/main (websocket origins: %s)", args.address,
              args.port, args.prefix, ", ".join(args.allow_websocket_origin))
     server.start()
-    # load the closed form's compiled kernels (core.warm) without delaying the first page
-    threading.Thread(target=warm, name="warm-kernels", daemon=True).start()
+    # load the compiled kernels (core.warm: the closed form first, then the Methods and
+    # Motor cards' methods) without delaying the first page
+    threading.Thread(target=warm_all, name="warm-kernels", daemon=True).start()
     server.io_loop.start()
 
 

@@ -1,9 +1,12 @@
-"""Load (or, in a fresh environment, compile) every compiled kernel of the closed form.
+"""Load (or, in a fresh environment, compile) every compiled kernel the explorer runs.
 
 numba compiles a kernel on its first call and caches it on disk (``NUMBA_CACHE_DIR``, or
-``__pycache__`` next to the sources): a few seconds the first time, tens of ms from the
-cache. ``warm()`` makes that first call with tiny inputs, so that a server can do it in
-the background at start-up and an image can do it at build time.
+``__pycache__`` next to the sources): seconds the first time (the closed form ~3 s, MDR
+and the annulus ~4-5 s each, the DEM rules ~1 s), tens of ms from the cache.
+``warm()`` makes that first call with tiny inputs for the closed form, ``warm_methods()``
+for the methods of ``core.numerics`` and the moving rotor of ``core.motor`` (the Methods
+and Motor cards), so that a server can do it in the background at start-up and an image
+can do it at build time (``python -m core.warm``: both).
 """
 
 from __future__ import annotations
@@ -26,5 +29,22 @@ def warm() -> None:
     float(c.F0)
 
 
-if __name__ == "__main__":
+def warm_methods() -> None:
+    """One tiny run of each method of ``core.numerics`` and of the moving rotor."""
+    from core import numerics
+    from core.motor.moving_rotor import moving_rotor
+
+    c = Contact(2.0, 0.3)
+    for name in numerics.METHODS:
+        numerics.solve(name, c, 8)
+    moving_rotor(2.0, 0.3, [0.0, 0.1], springs=8, steps=16)
+
+
+def warm_all() -> None:
+    """The closed form first (every page needs it), then the methods."""
     warm()
+    warm_methods()
+
+
+if __name__ == "__main__":
+    warm_all()

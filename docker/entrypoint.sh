@@ -25,6 +25,15 @@ if [ "$#" -gt 0 ] && [ "${1#-}" = "$1" ]; then
     exec "$@"
 fi
 
+# numba's compiled kernels: the cache built with the image, copied into the writable
+# NUMBA_CACHE_DIR (a tmpfs on /tmp in a read-only container) when that does not exist
+# yet, so that the server loads the kernels instead of compiling them.
+IMAGE_CACHE=${IMAGE_CACHE:-/opt/zharii/numba-cache}
+if [ -n "${NUMBA_CACHE_DIR:-}" ] && [ -d "$IMAGE_CACHE" ] && [ ! -e "$NUMBA_CACHE_DIR" ]; then
+    mkdir -p "$NUMBA_CACHE_DIR" && cp -R "$IMAGE_CACHE/." "$NUMBA_CACHE_DIR/" \
+        || echo "entrypoint: could not copy $IMAGE_CACHE to $NUMBA_CACHE_DIR (kernels compile at start)" >&2
+fi
+
 PORT=${PORT:-5006}
 ADDRESS=${ADDRESS:-0.0.0.0}
 NUM_PROCS=${NUM_PROCS:-0}

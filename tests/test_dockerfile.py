@@ -366,6 +366,22 @@ def test_entrypoint_defaults(tmp_path):
     assert "--admin" not in argv and not [a for a in argv if a.startswith("--basic-auth")]
 
 
+def test_entrypoint_seeds_the_numba_cache_from_the_image(tmp_path):
+    """The image's compiled kernels are copied into NUMBA_CACHE_DIR when that does not
+    exist (a fresh tmpfs); one that exists is left as it is."""
+    image = tmp_path / "image-cache"
+    (image / "core_abc").mkdir(parents=True)
+    (image / "core_abc" / "kernel.nbi").write_text("index")
+    cache = tmp_path / "tmp" / "numba-cache"
+    env = {"IMAGE_CACHE": str(image), "NUMBA_CACHE_DIR": str(cache)}
+    proc = run_entrypoint(tmp_path, env)
+    assert proc.returncode == 0, proc.stderr
+    assert (cache / "core_abc" / "kernel.nbi").read_text() == "index"
+    (image / "core_abc" / "kernel.nbi").write_text("newer")
+    assert run_entrypoint(tmp_path, env).returncode == 0
+    assert (cache / "core_abc" / "kernel.nbi").read_text() == "index"  # left alone
+
+
 def test_entrypoint_reads_the_environment(tmp_path):
     env = {
         "PORT": "8080",
