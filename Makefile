@@ -38,8 +38,11 @@ browser:
 lint: venv
 	$(VENV)/bin/ruff check .
 
+# (the compiled kernels first, into numba's cache: the servers the browser tests start
+# then load them rather than compile them while the tests run)
 test: venv browser
 	$(VENV)/bin/ruff check .
+	$(PY) -m core.warm
 	$(VENV)/bin/pytest
 
 test-core: venv
