@@ -187,7 +187,7 @@ class MethodsScene:
         if self._contact is not None:
             with hold():
                 self.update_contact(self._contact)
-            if first and not self.live.value:
+            if first:
                 self.run()  # the methods chosen by default, drawn once on opening
 
     def close(self) -> None:
