@@ -83,6 +83,11 @@ def presentation(ex: Explorer) -> pn.Column:
     # their neighbours' frames (BokehJS aligns them by default: the traction plot's
     # legend row above its frame would push the disc's frame down, out of its aspect)
     spheres.frame_align = disc.frame_align = False
+    # T(tau) spans the screen's width but little of its height: its legend beside it
+    for legend in force.legend:
+        force.above = [m for m in force.above if m is not legend]
+        legend.orientation, legend.spacing = "vertical", 3
+        force.add_layout(legend, "right")
     # the scenes' box is the size container: 100cqh is its height, 100cqw its width
     spheres.styles = equal_scales_box(aspect(spheres), SPHERES_RIM, "100cqh",
                                       f"{100 * SPHERES_MAX_WIDTH}cqw")

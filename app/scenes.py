@@ -140,9 +140,10 @@ def add_legend(fig, entries: list[tuple[str, list[GlyphRenderer]]], place: str =
         proxy.js_on_change("visible", toggle)
     items = [LegendItem(label=label, renderers=[proxy])
              for (label, _), proxy in zip(entries, proxies, strict=True)]
-    row = place in ("above", "below")
+    row = place in ("above", "below")  # (a row: tighter around, wider between entries)
     legend = Legend(items=items, location=location, click_policy="hide",
-                    orientation="horizontal" if row else "vertical", spacing=16 if row else 3)
+                    orientation="horizontal" if row else "vertical", spacing=16 if row else 3,
+                    padding=5 if row else 10, margin=4 if row else 10)
     fig.add_layout(legend, place)
     return legend
 
@@ -404,9 +405,13 @@ class CurveScene(Scene):
             lines = [draw(fig, Line, self.source, x="tau", y=col, color=color, line_width=3,
                           line_dash=dash, level=FRAME_LEVEL, name=f"{self.name}_{col}")
                      for col, _, color, dash in drawn]
-            # the curves are drawn above the legend's level, so the legend goes beside them
-            add_legend(fig, [(label, [line]) for (_, label, *_), line
-                             in zip(drawn, lines, strict=True)])
+            # the curves are drawn above the legend's level, so the legend goes outside
+            # the frame: in one row above it (beside it, it left a phone a narrow frame)
+            # (curves of one label share an entry: +-mu P)
+            entries: dict[str, list[GlyphRenderer]] = {}
+            for (_, label, *_), line in zip(drawn, lines, strict=True):
+                entries.setdefault(label, []).append(line)
+            add_legend(fig, list(entries.items()), place="above")
             view = {} if len(self._panels()) == 1 else {"view": CDSView(
                 filter=IndexFilter([rows[col] for col in cols]))}
             draw(fig, Scatter, self.marker, x="x", y="y", size=13, color="color",
@@ -476,8 +481,8 @@ class ForceScene(CurveScene):
     y_label = "T / T₀"
     curves = (
         ("T", "T / T₀", "#000000", "solid"),
-        ("muP", "+μP / T₀", "#999999", "dashed"),
-        ("neg_muP", "−μP / T₀", "#999999", "dashed"),
+        ("muP", "±μP / T₀", "#999999", "dashed"),
+        ("neg_muP", "±μP / T₀", "#999999", "dashed"),
     )
 
     def __init__(self) -> None:

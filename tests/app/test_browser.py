@@ -365,6 +365,23 @@ def test_legend_click_hides_the_curve(browser, url) -> None:
     page.close()
 
 
+def test_one_legend_entry_hides_both_coulomb_bounds(browser, url) -> None:
+    """T(tau)'s "±μP / T₀" entry stands for the two bounds: a click hides both, a second
+    shows both."""
+    page, console = open_explorer(browser, url)
+    page.wait_for_function("() => (__col('force', 'muP') || []).length > 0", timeout=20_000)
+    shown = ("() => ['force_muP', 'force_neg_muP'].map("
+             "(n) => Bokeh.documents[0].get_model_by_name(n).visible)")
+    assert page.evaluate(shown) == [True, True]
+    entry = page.get_by_text("±μP / T₀", exact=True)
+    entry.click()
+    page.wait_for_function(f"() => ({shown})().every((v) => !v)", timeout=5000)
+    entry.click()
+    page.wait_for_function(f"() => ({shown})().every((v) => v)", timeout=5000)
+    assert errors(console) == []
+    page.close()
+
+
 #: The page box of the traction plot and the phase its label names.
 JS_TRACTION_BOX = """() => {
   const v = __views((v) => v.model != null && v.model.type === "Figure"
