@@ -105,7 +105,7 @@ def presentation(ex: Explorer) -> pn.Column:
     for widget in (ex.preset_select, ex.speed_slider):  # as wide as their columns
         widget.param.update(width=None, sizing_mode="stretch_width")
     controls = pn.FlexBox(
-        pn.Column(ex.preset_select, styles={"flex": "1 1 260px"}),
+        pn.Column(ex.preset_select, styles={"flex": "1 1 340px"}),  # (the longest name)
         pn.Row(ex.play_button, ex.step_button, ex.reset_button, align="end"),
         pn.Column(ex.speed_slider, styles={"flex": "0 1 200px"}),
         pn.Column(ex.tau_slider, styles={"flex": "2 1 320px"}),
