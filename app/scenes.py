@@ -202,6 +202,11 @@ def png_name(title: str) -> str:
     return "_".join(["zharii", *re.findall(r"[a-z0-9]+", text)])
 
 
+#: The landmark labels' offset below the frame's top (px), and tau1's, a line lower: it
+#: comes close to pi - tau0 for psi near 1 and to pi/2 for large psi.
+LANDMARK_DY, TAU1_DY = 2, 18
+
+
 class Scene:
     """Base: a figure, its named source, and the two update hooks."""
 
@@ -363,7 +368,7 @@ class CurveScene(Scene):
                                        name=f"{self.name}_marker")
         #: the paper's landmarks on the time axis: tau0, pi/2, tau1 (psi > 1), pi - tau0
         #: (one source per panel)
-        empty = {"x": [], "label": [], "align": [], "lo": [], "hi": []}
+        empty = {"x": [], "label": [], "align": [], "dy": [], "lo": [], "hi": []}
         self._landmarks = [
             ColumnDataSource(empty, name=f"{self.name}_landmarks" + (f"_{i}" if i else ""))
             for i in range(len(self._panels()))]
@@ -400,7 +405,7 @@ class CurveScene(Scene):
                  line_color="#bbbbbb", line_width=1, line_dash="dashed")
             draw(fig, Text, landmarks, x="x", y="hi", text="label", text_align="align",
                  text_baseline="top", text_font_size="12pt", text_color="#555555",
-                 y_offset=2)
+                 y_offset="dy")
             drawn = [(c, lb, color, dash) for c, lb, color, dash in self.curves if c in cols]
             lines = [draw(fig, Line, self.source, x="tau", y=col, color=color, line_width=3,
                           line_dash=dash, level=FRAME_LEVEL, name=f"{self.name}_{col}")
@@ -458,8 +463,9 @@ class CurveScene(Scene):
             # would be cut)
             align = ["left", *["center"] * (len(marks) - 2), "right"]
             landmarks.data = {"x": [x for x, _ in marks], "label": [lb for _, lb in marks],
-                              "align": align, "lo": [y.start] * len(marks),
-                              "hi": [y.end] * len(marks)}
+                              "align": align,
+                              "dy": [TAU1_DY if lb == "τ₁" else LANDMARK_DY for _, lb in marks],
+                              "lo": [y.start] * len(marks), "hi": [y.end] * len(marks)}
 
     def update_tau(self, c: Contact, tau: float) -> None:
         values = self.columns(c, np.array([tau]))

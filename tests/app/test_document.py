@@ -777,6 +777,9 @@ def test_time_axes_mark_the_papers_landmarks(ex: Explorer, psi: float) -> None:
         assert d["label"] == ["τ₀", "π/2", *([] if psi <= 1 else ["τ₁"]), "π−τ₀"]
         assert d["align"] == ["left", "center", *([] if psi <= 1 else ["center"]), "right"]
         assert d["hi"] == [scene.figures[0].y_range.end] * len(expected)
+        # tau1 a line lower than its neighbours (pi - tau0 for psi near 1, pi/2 for large
+        # psi: a few px apart on a phone)
+        assert d["dy"] == [2, 2, *([] if psi <= 1 else [18]), 2]
 
 
 # ---------------------------------------------------------- the two spheres
