@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 import panel as pn
 
 from app import layout
+from app.scenes import place_legend
 
 if TYPE_CHECKING:
     from app.explorer import Explorer
@@ -85,9 +86,7 @@ def presentation(ex: Explorer) -> pn.Column:
     spheres.frame_align = disc.frame_align = False
     # T(tau) spans the screen's width but little of its height: its legend beside it
     for legend in force.legend:
-        force.above = [m for m in force.above if m is not legend]
-        legend.orientation, legend.spacing = "vertical", 3
-        force.add_layout(legend, "right")
+        place_legend(force, legend, "right")
     # the scenes' box is the size container: 100cqh is its height, 100cqw its width
     spheres.styles = equal_scales_box(aspect(spheres), SPHERES_RIM, "100cqh",
                                       f"{100 * SPHERES_MAX_WIDTH}cqw")

@@ -140,12 +140,21 @@ def add_legend(fig, entries: list[tuple[str, list[GlyphRenderer]]], place: str =
         proxy.js_on_change("visible", toggle)
     items = [LegendItem(label=label, renderers=[proxy])
              for (label, _), proxy in zip(entries, proxies, strict=True)]
-    row = place in ("above", "below")  # (a row: tighter around, wider between entries)
-    legend = Legend(items=items, location=location, click_policy="hide",
-                    orientation="horizontal" if row else "vertical", spacing=16 if row else 3,
-                    padding=5 if row else 10, margin=4 if row else 10)
-    fig.add_layout(legend, place)
+    legend = Legend(items=items, location=location, click_policy="hide")
+    place_legend(fig, legend, place)
     return legend
+
+
+def place_legend(fig, legend: Legend, place: str) -> None:
+    """Put `legend` in `fig`'s side panel `place` ('above', 'right', ...), out of any
+    other: a row above or below (tighter around, wider between entries), a column
+    beside."""
+    for side in ("above", "below", "left", "right", "center"):
+        setattr(fig, side, [m for m in getattr(fig, side) if m is not legend])
+    row = place in ("above", "below")
+    legend.update(orientation="horizontal" if row else "vertical", spacing=16 if row else 3,
+                  padding=5 if row else 10, margin=4 if row else 10)
+    fig.add_layout(legend, place)
 
 
 def nice_step(span: float, parts: int = 10) -> float:

@@ -59,6 +59,7 @@ from tqdm import tqdm  # noqa: E402
 
 from app.benchmark_charts import (  # noqa: E402
     CHECKS,
+    EMPTY,
     PEERS,
     REGIMES,
     label,
@@ -575,7 +576,7 @@ def chart(rows: list[dict], path: Path) -> None:
     select.js_on_change("value", CustomJS(
         args=dict(views=data.views, stars=data.closed_form, star=shown.closed_form,
                   sources={k: list(v) for k, v in shown.sources.items()},
-                  empty=dict(x=[], y=[], run=[])),
+                  empty=EMPTY),
         code="""
 const v = views[this.value];
 for (const [name, [every, front]] of Object.entries(sources)) {
