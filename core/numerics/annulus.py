@@ -74,7 +74,7 @@ def compliance_matrix(edges: NDArray[np.float64]) -> NDArray[np.float64]:
 
 
 @lru_cache(maxsize=32)
-def _compliance(n: int) -> NDArray[np.float64]:
+def compliance(n: int) -> NDArray[np.float64]:
     """The compliance matrix of n equal rings on [0, 1]: geometry only, so it is built
     once per ring count (scipy's K and E) and reused for every contact."""
     C = compliance_matrix(np.linspace(0.0, 1.0, n + 1))
@@ -292,7 +292,7 @@ def run(psi: float, tau0: float, tau: NDArray[np.float64], n: int
     ap = np.where(inside, np.maximum(np.sin(tau) - s0, 0.0), 0.0)
     a_all = np.sqrt(ap / (1.0 - s0))
     delta = 0.5 * np.pi * psi * np.sin(tau) / (1.0 - s0)
-    return march(_compliance(n), np.linspace(0.0, 1.0, n + 1), a_all, delta,
+    return march(compliance(n), np.linspace(0.0, 1.0, n + 1), a_all, delta,
                  1.5 / np.pi * (1.0 - s0) ** 1.5)
 
 
@@ -310,7 +310,7 @@ def moving(psi: float, tau0: float, v: float, n: int, steps: int
     ap = np.maximum(rise(tau, tau0), 0.0)
     ap[0] = ap[-1] = 0.0
     delta = 0.5 * np.pi * psi / c0 * relative_drive(tau, tau0, v)
-    T, _ = march(_compliance(n), np.linspace(0.0, 1.0, n + 1), np.sqrt(ap / c0), delta,
+    T, _ = march(compliance(n), np.linspace(0.0, 1.0, n + 1), np.sqrt(ap / c0), delta,
                  1.5 / np.pi * c0 ** 1.5)
     return tau, T, ap ** 1.5
 
@@ -329,5 +329,5 @@ def solve(contact_: ContactLike, resolution: int, steps: int | None = None) -> t
                                                                  name="steps")
     psi, tau0 = contact_parameters(contact_)
     check_resolution(n * m, name="rings * time steps")
-    tau, T, b, ratio = contact(psi, tau0, _compliance(n), m)
+    tau, T, b, ratio = contact(psi, tau0, compliance(n), m)
     return tau, T, b, ratio
