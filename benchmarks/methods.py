@@ -19,7 +19,11 @@ timing (``head_to_head``): per case, the fastest peer at each target, the closed
 200 points and the closed form on as many points as that peer returns, their windows
 interleaved so that a burst of load on the shared machine hits all of them alike.
 ``call_floors`` times numba functions that only return new arrays of each method's
-size: the cost of the call itself, under any method with that interface.
+size: the cost of the call itself, under any method with that interface. That cost
+(0.7-1.1 us) is the interpreter's, not the method's, and at 1e-2 it is most of every
+method's time; so the head-to-head runs are timed once more many contacts a call
+(``batched``: the kernel looped in compiled code, as a DEM code or a sweep over a rod
+runs it, the same count rule for every method) and reported per contact as well.
 
 Cases: psi in {0.4, 1, 2.414, 28.35, 1000} x tau0 in {pi/6, 1.5, -0.9}, in four regimes:
 "psi <= 1" and "psi > 1" (tau0 = pi/6), "grazing" (tau0 = 1.5), "preload" (tau0 = -0.9).
@@ -28,7 +32,8 @@ Outputs (benchmarks/results/, or results/quick/ with --quick):
   speed_accuracy.csv    one row per run (method, resolution, steps, case, time, errors)
   speed_accuracy.html   Bokeh chart: per regime or case, time against error, Pareto fronts
   head_to_head.csv      per case, error kind and target: the fastest peer, the closed form
-                        on 200 points and on as many points as the peer, timed interleaved
+                        on 200 points and on as many points as the peer, timed interleaved,
+                        one contact a call and (*_batch, per contact) many a call
   call_floors.json      the cost of a numba call returning new arrays of each method's size
   methods_table.md      per case and per regime: fastest peer reaching each error target
   compile_times.json    cold compile and cached first-call time of each kernel
@@ -46,6 +51,7 @@ import sys
 import tempfile
 import time
 from collections.abc import Callable
+from functools import partial
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -54,6 +60,7 @@ sys.path.insert(0, str(ROOT / "benchmarks"))
 
 import mpmath as mp  # noqa: E402
 import numpy as np  # noqa: E402
+from numba import njit  # noqa: E402
 from results_csv import read_csv, write_csv  # noqa: E402
 from tqdm import tqdm  # noqa: E402
 
@@ -66,7 +73,7 @@ from app.benchmark_charts import (  # noqa: E402
     speed_accuracy_chart,
     speed_accuracy_data,
 )
-from core import Contact, curve  # noqa: E402
+from core import Contact, curve, kernels  # noqa: E402
 from core.numerics import MethodResult, Params, annulus, dem, mdr, quadrature  # noqa: E402
 from core.numerics.metrics import errors  # noqa: E402
 
@@ -75,6 +82,7 @@ TAU0S = [np.pi / 6, 1.5, -0.9]
 THRESHOLDS = [1e-2, 1e-4, 1e-6, 1e-9]
 WINDOW = 2e-3
 REPEATS = 5
+BATCH_SECONDS = 1e-3
 CLOSED_FORM_POINTS = 200
 DEM = list(dem.MODELS)
 MDR_SPRINGS = [4, 6, 8, 12, 16, 24, 32, 48, 64, 100, 140, 200, 280, 400, 560, 800, 1600,
@@ -92,7 +100,8 @@ QUICK_LADDERS = {k: v[::3] for k, v in LADDERS.items()}
 FIELDS = ["method", "resolution", "steps", "psi", "tau0", "regime", "points", "wall_time",
           "err_T", "err_impulse", "err_b", "err", "err_rel"]
 HEAD_FIELDS = ["psi", "tau0", "regime", "kind", "threshold", "peer", "peer_points",
-               "peer_time", "cf_time", "cf_n", "cf_points", "cf_n_time"]
+               "peer_time", "cf_time", "cf_n", "cf_points", "cf_n_time", "peer_batch",
+               "cf_batch", "cf_n_batch"]
 
 
 def regime(psi: float, tau0: float) -> str:
@@ -116,24 +125,78 @@ def closed_form(psi: float, tau0: float):
 def job(name: str, psi: float, tau0: float, resolution: int, steps: int | None
         ) -> Callable[[], tuple]:
     """The call that computes one contact with ``name``, and nothing else: the function
-    users call (``core.curve``) or the method's kernel, with its arguments bound. What it
-    returns differs per method; ``as_result`` turns it into (tau, T, b, ratio)."""
+    users call (``core.curve``) or the method's kernel, with its arguments bound (a
+    ``functools.partial`` for every method alike). What it returns differs per method;
+    ``as_result`` turns it into (tau, T, b, ratio)."""
     if name == "closed_form":
-        return lambda: curve(psi, tau0, CLOSED_FORM_POINTS)
+        return partial(curve, psi, tau0, CLOSED_FORM_POINTS)
+    if name == "quad":
+        return partial(quadrature.solve_quad, Params(psi, tau0), resolution)
+    if name == "gauss_legendre":
+        return partial(quadrature.solve_gauss_legendre, Params(psi, tau0), resolution)
+    kernel, args, _ = compiled(name, psi, tau0, resolution, steps)
+    return partial(kernel, *args)
+
+
+# ------------------------------------------------------------------ many contacts a call
+
+
+@njit
+def repeat(kernel, args, check, count):
+    """``kernel(*args)`` ``count`` times in one compiled loop, no Python between two
+    contacts; returns the sum of ``check(result)``, which reads every call's T and impulse
+    ratio, so that no call's work can be left out."""
+    acc = 0.0
+    for _ in range(count):
+        acc += check(kernel(*args))
+    return acc
+
+
+@njit
+def _check_rows(out):
+    """The closed form's (rows, ratio): last T and the ratio."""
+    return out[0][1, -1] + out[1]
+
+
+@njit
+def _check_numerics(out):
+    """MDR's and the annulus's (tau, T, b, ratio, ...): last T and the ratio."""
+    return out[1][-1] + out[3]
+
+
+@njit
+def _check_dem(out):
+    """A DEM rule's (tau, T, ratio): last T and the ratio."""
+    return out[1][-1] + out[2]
+
+
+def compiled(name: str, psi: float, tau0: float, resolution: int, steps: int | None
+             ) -> tuple[Callable, tuple, Callable]:
+    """(kernel, args, check) of one contact by ``name``: the compiled kernel alone (the
+    closed form's is ``core.kernels.curve`` on about ``resolution`` points: arguments are
+    checked once per batch, as ``core.batch`` does), for ``repeat``."""
+    if name == "closed_form":
+        return kernels.curve, (psi, tau0, resolution), _check_rows
     if name == "mdr":
-        return lambda: mdr.contact(psi, tau0, resolution, steps)
+        return mdr.contact, (psi, tau0, resolution, steps), _check_numerics
     if name == "annulus":
         m = annulus.default_steps(resolution) if steps is None else steps
-        C = annulus._compliance(resolution)  # built once per ring count, then cached
-        return lambda: annulus.contact(psi, tau0, C, m)
+        return (annulus.contact, (psi, tau0, annulus.compliance(resolution), m),
+                _check_numerics)
     if name in dem.MODELS:
-        model = dem.MODELS[name]
-        return lambda: dem.contact(model, psi, tau0, resolution)
-    if name == "quad":
-        return lambda: quadrature.solve_quad(Params(psi, tau0), resolution)
-    if name == "gauss_legendre":
-        return lambda: quadrature.solve_gauss_legendre(Params(psi, tau0), resolution)
+        return dem.contact, (dem.MODELS[name], psi, tau0, resolution), _check_dem
     raise KeyError(name)
+
+
+def batched(name: str, psi: float, tau0: float, resolution: int, steps: int | None,
+            seconds_each: float) -> tuple[int, Callable[[], float]]:
+    """(count, call): ``count`` contacts by ``name`` in one compiled call, count chosen
+    by one rule for every method (a call of about BATCH_SECONDS, given one contact's
+    time ``seconds_each``), so that the call from Python, 0.7-1.1 us whatever the method
+    (``call_floors``), is shared by the contacts: per-contact time = call time / count."""
+    kernel, args, check = compiled(name, psi, tau0, resolution, steps)
+    count = max(1, round(BATCH_SECONDS / seconds_each))
+    return count, partial(repeat, kernel, args, check, count)
 
 
 def as_result(name: str, out: tuple) -> tuple:
@@ -279,7 +342,7 @@ calls = {
         curve(2.0, 0.3, 8), batch.tangential_force(2.0, 0.3, [1.0]),
         impulse_ratio([2.0], 0.3)),
     "mdr": lambda: mdr.contact(2.0, 0.3, 8, 8),
-    "annulus": lambda: annulus.contact(2.0, 0.3, annulus._compliance(4), 16),
+    "annulus": lambda: annulus.contact(2.0, 0.3, annulus.compliance(4), 16),
     "dem (all seven rules)": lambda: dem.contact(0, 2.0, 0.3, 10),
 }
 for name, call in calls.items():
@@ -357,13 +420,24 @@ def per_case(rows: list[dict], key: str, methods: list[str]) -> list[dict]:
 
 
 KINDS = (("err_rel", "relative"), ("err", "absolute"))
+RATIOS = (
+    ("ratio", f"one contact a call, against the closed form on {CLOSED_FORM_POINTS} points"),
+    ("ratio_points", "one contact a call, against the closed form on as many points as "
+                     "the peer"),
+    ("ratio_batch", "many contacts a call, against the closed form on "
+                    f"{CLOSED_FORM_POINTS} points"),
+    ("ratio_points_batch", "many contacts a call, against the closed form on as many "
+                           "points as the peer"),
+)
 
 
 def head_to_head_rows(rows: list[dict]) -> list[dict]:
     """The ratios of the tables: per case, error kind and threshold, the fastest peer of
     the sweep reaching it, timed again interleaved (``head_to_head``) with the closed
     form on 200 points and with the closed form on at least as many points as that
-    peer returns (``core.curve(psi, tau0, n)``, n from ``closed_form_n_for``)."""
+    peer returns (``core.curve(psi, tau0, n)``, n from ``closed_form_n_for``); then the
+    same runs again, each as many contacts a call (``batched``), timed interleaved: the
+    ``*_batch`` columns, seconds per contact."""
     out = []
     cases = [(r["psi"], r["tau0"]) for r in rows if r["method"] == "closed_form"]
     for psi, tau0 in tqdm(cases, desc="head to head", unit="case"):
@@ -376,25 +450,39 @@ def head_to_head_rows(rows: list[dict]) -> list[dict]:
                 if best is not None:
                     winners[label(best)] = best
         ns = sorted({closed_form_n_for(psi, tau0, w["points"]) for w in winners.values()})
+        runs = [("closed_form", CLOSED_FORM_POINTS, None)]
+        runs += [("closed_form", n, None) for n in ns]
+        runs += [(w["method"], w["resolution"], w["steps"] or None) for w in winners.values()]
         fns = [job("closed_form", psi, tau0, 0, None)]
-        fns += [lambda p=psi, t=tau0, n=n: curve(p, t, n) for n in ns]
-        fns += [job(w["method"], psi, tau0, w["resolution"], w["steps"] or None)
-                for w in winners.values()]
+        fns += [partial(curve, psi, tau0, n) for n in ns]
+        fns += [job(name, psi, tau0, res, steps) for name, res, steps in runs[1 + len(ns):]]
         for fn in fns:
             fn()
         times = head_to_head(fns)
-        cf_time = times[0]
-        cf_n = dict(zip(ns, times[1:1 + len(ns)], strict=True))
-        peer = dict(zip(winners, times[1 + len(ns):], strict=True))
+        # the same contacts, many a call: counts from the times just measured
+        batches = [batched(name, psi, tau0, res, steps, t)
+                   for (name, res, steps), t in zip(runs, times, strict=True)]
+        for _, fn in batches:
+            fn()
+        each = [t / count for (count, _), t in
+                zip(batches, head_to_head([fn for _, fn in batches]), strict=True)]
+        cf_time, cf_batch = times[0], each[0]
+        cf_n = dict(zip(ns, zip(times[1:1 + len(ns)], each[1:1 + len(ns)],
+                                strict=True), strict=True))
+        peer = dict(zip(winners, zip(times[1 + len(ns):], each[1 + len(ns):], strict=True),
+                        strict=True))
         for (kind, thr), best in picks.items():
             row = dict(psi=psi, tau0=tau0, regime=regime(psi, tau0), kind=kind,
                        threshold=thr, cf_time=cf_time, peer="", peer_points=0,
-                       peer_time=float("nan"), cf_n=0, cf_points=0, cf_n_time=float("nan"))
+                       peer_time=float("nan"), cf_n=0, cf_points=0, cf_n_time=float("nan"),
+                       peer_batch=float("nan"), cf_batch=cf_batch,
+                       cf_n_batch=float("nan"))
             if best is not None:
                 n = closed_form_n_for(psi, tau0, best["points"])
                 row.update(peer=label(best), peer_points=best["points"],
-                           peer_time=peer[label(best)], cf_n=n,
-                           cf_points=closed_form_points(psi, tau0, n), cf_n_time=cf_n[n])
+                           peer_time=peer[label(best)][0], peer_batch=peer[label(best)][1],
+                           cf_n=n, cf_points=closed_form_points(psi, tau0, n),
+                           cf_n_time=cf_n[n][0], cf_n_batch=cf_n[n][1])
             out.append(row)
     return out
 
@@ -413,7 +501,9 @@ def cases_of(head: list[dict], kind: str) -> list[dict]:
         entry["best"][r["threshold"]] = None if not r["peer"] else dict(
             run=r["peer"], points=int(r["peer_points"]), time=r["peer_time"],
             ratio=r["peer_time"] / r["cf_time"], cf_points=int(r["cf_points"]),
-            cf_n_time=r["cf_n_time"], ratio_points=r["peer_time"] / r["cf_n_time"])
+            cf_n_time=r["cf_n_time"], ratio_points=r["peer_time"] / r["cf_n_time"],
+            batch=r["peer_batch"], ratio_batch=r["peer_batch"] / r["cf_batch"],
+            ratio_points_batch=r["peer_batch"] / r["cf_n_batch"])
     return list(out.values())
 
 
@@ -435,8 +525,6 @@ def call_floors() -> dict[str, float]:
     def like_curve(a, b, n):
         return np.empty((3, n)), a
 
-    from core import kernels
-
     calls = {
         "a numba call with three scalar arguments, returning a float": (scalars, 10),
         "returning two new arrays of 11 floats and a float (a 10-step DEM rule)":
@@ -446,12 +534,12 @@ def call_floors() -> dict[str, float]:
         "returning a new 3 x 226 array and a float (the closed form on 200 points)":
             (like_curve, 226),
     }
-    fns = [lambda f=f, n=n: f(0.5, 0.5, n) for f, n in calls.values()]
+    fns = [partial(f, 0.5, 0.5, n) for f, n in calls.values()]
     psi, tau0 = 2.414, np.pi / 6
     calls["the closed form at psi = 2.414, tau0 = pi/6: core.curve(psi, tau0, 200)"] = None
-    fns.append(lambda: curve(psi, tau0, CLOSED_FORM_POINTS))
+    fns.append(partial(curve, psi, tau0, CLOSED_FORM_POINTS))
     calls["the same without the argument checks: core.kernels.curve(psi, tau0, 200)"] = None
-    fns.append(lambda: kernels.curve(psi, tau0, CLOSED_FORM_POINTS))
+    fns.append(partial(kernels.curve, psi, tau0, CLOSED_FORM_POINTS))
     for fn in fns:
         fn()
     return dict(zip(calls, head_to_head(fns), strict=True))
@@ -493,13 +581,17 @@ def markdown(rows: list[dict], head: list[dict], compile_info: dict | None,
              "time (> 1: the closed form is faster): **ratio** against `core.curve(psi, "
              f"tau0, {CLOSED_FORM_POINTS})`, **same points** against `core.curve(psi, "
              "tau0, n)` with the least n that returns at least as many times as the peer "
-             "(pts).", ""]
+             "(pts). **Many a call**: the same runs, each as many contacts in one compiled "
+             f"loop as last about {BATCH_SECONDS * 1e3:g} ms (the closed form's kernel "
+             "`core.kernels.curve`, arguments checked once a batch), time per contact; "
+             "the per-case cells give the peer's time per contact and both ratios.", ""]
     for key, kind in KINDS:
         cases = cases_of(head, kind)
         errs = {(r["psi"], r["tau0"]): r[key] for r in rows if r["method"] == "closed_form"}
         lines += [f"## Per case, {kind} error", "",
                   "| psi | tau0 | regime | closed form (200) | its error | "
-                  + " | ".join(f"{t:.0e}: fastest peer (pts), time, ratio, same points"
+                  + " | ".join(f"{t:.0e}: fastest peer (pts), time, ratio, same points; "
+                               "many a call: time, ratio, same points"
                                for t in THRESHOLDS)
                   + " |", "|---:|---:|---|---:|---:|" + "---|" * len(THRESHOLDS)]
         for c in cases:
@@ -508,14 +600,13 @@ def markdown(rows: list[dict], head: list[dict], compile_info: dict | None,
                 b = c["best"][thr]
                 cells.append("not reached" if b is None else
                              f"{b['run']} ({b['points']}), {fmt_time(b['time'])}, "
-                             f"**{b['ratio']:.3g}**, {b['ratio_points']:.3g}")
+                             f"**{b['ratio']:.3g}**, {b['ratio_points']:.3g}; "
+                             f"{fmt_time(b['batch'])}, **{b['ratio_batch']:.3g}**, "
+                             f"{b['ratio_points_batch']:.3g}")
             lines.append(f"| {c['psi']:g} | {c['tau0']:.4g} | {c['regime']} | "
                          f"{fmt_time(c['cf_time'])} | {errs[c['psi'], c['tau0']]:.1e} | "
                          + " | ".join(cells) + " |")
-        for ratio, what in (("ratio", f"against the closed form on {CLOSED_FORM_POINTS} "
-                                      "points"),
-                            ("ratio_points", "against the closed form on as many points "
-                                             "as the peer")):
+        for ratio, what in RATIOS:
             lines += ["", f"## Per regime, {kind} error, {what}: ratio over the cases "
                       "(median, smallest, largest)", "",
                       "| regime | " + " | ".join(f"{t:.0e}" for t in THRESHOLDS) + " |",
