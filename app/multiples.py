@@ -25,11 +25,11 @@ KEYS = ("fig6a", "fig6b", "fig6c", "fig6d", "fig6e", "fig6f")
 
 
 def panel_title(key: str) -> str:
-    """'6a: tau = pi/4, slip': the panel, its time and the phase at that time."""
+    """'6a: τ = π/4, slip': the panel, its time and the phase at that time."""
     p = PRESETS[key]
-    when = p.label.split("tau = ")[-1]
+    when = p.label.split("τ = ")[-1]
     phase = style(Contact(p.psi, p.tau0).phase(p.tau)).name
-    return f"6{key[-1]}: τ = {when.replace('pi', 'π')}, {phase}"
+    return f"6{key[-1]}: τ = {when}, {phase}"
 
 
 class SmallMultiples:

@@ -92,22 +92,22 @@ class Preset:
 
 
 PRESETS: dict[str, Preset] = {
-    "fig4": Preset("Fig. 4: approach, a and b (psi = 2.414)", SQRT2_1, TAU0, 3 * PI / 5),
-    "fig6a": Preset("Fig. 6a: loading, tau = pi/4", SQRT2_1, TAU0, PI / 4),
-    "fig6b": Preset("Fig. 6b: loading, tau = pi/3", SQRT2_1, TAU0, PI / 3),
-    "fig6c": Preset("Fig. 6c: end of loading, tau = pi/2", SQRT2_1, TAU0, PI / 2),
-    "fig6d": Preset("Fig. 6d: partial stick, tau = 7pi/12", SQRT2_1, TAU0, 7 * PI / 12),
-    "fig6e": Preset("Fig. 6e: partial stick, tau = 17pi/24", SQRT2_1, TAU0, 17 * PI / 24),
+    "fig4": Preset("Fig. 4: approach, a, b (ψ = 2.414)", SQRT2_1, TAU0, 3 * PI / 5),
+    "fig6a": Preset("Fig. 6a: loading, τ = π/4", SQRT2_1, TAU0, PI / 4),
+    "fig6b": Preset("Fig. 6b: loading, τ = π/3", SQRT2_1, TAU0, PI / 3),
+    "fig6c": Preset("Fig. 6c: end of loading, τ = π/2", SQRT2_1, TAU0, PI / 2),
+    "fig6d": Preset("Fig. 6d: partial stick, τ = 7π/12", SQRT2_1, TAU0, 7 * PI / 12),
+    "fig6e": Preset("Fig. 6e: partial stick, τ = 17π/24", SQRT2_1, TAU0, 17 * PI / 24),
     # tau1 = 3 pi/4 (the first float of counter-slip: 3 pi/4 rounded down is still in
     # partial stick, by a stick disc of 1.5e-8 a*)
-    "fig6f": Preset("Fig. 6f: counter-slip starts, tau = 3pi/4", SQRT2_1, TAU0,
+    "fig6f": Preset("Fig. 6f: counter-slip, τ = 3π/4", SQRT2_1, TAU0,
                     Contact(SQRT2_1, TAU0).tau1),
-    "fig7a": Preset("Fig. 7a: T(tau), psi = 0.4, 0.8, 1", 0.8, TAU0, PI / 2,
+    "fig7a": Preset("Fig. 7a: T(τ), ψ = 0.4, 0.8, 1", 0.8, TAU0, PI / 2,
                     family=(0.4, 0.8, 1.0)),
-    "fig7b": Preset("Fig. 7b: T(tau), psi = 2.41, 6.46, 28.35", 6.46, TAU0, PI / 2,
+    "fig7b": Preset("Fig. 7b: T(τ), ψ = 2.41 to 28.35", 6.46, TAU0, PI / 2,
                     family=(2.41, 6.46, 28.35)),
-    "fig8": Preset("Fig. 8: impulse vs psi (maximum at psi = 1)", 1.0, TAU0, PI / 2),
-    "fig9": Preset("Fig. 9: contact-centre motion (psi = 2.414)", SQRT2_1, TAU0,
+    "fig8": Preset("Fig. 8: impulse, peak at ψ = 1", 1.0, TAU0, PI / 2),
+    "fig9": Preset("Fig. 9: centre motion (ψ = 2.414)", SQRT2_1, TAU0,
                    2 * PI / 3),
 }
 

@@ -326,7 +326,7 @@ def test_step_button_moves_tau(browser, url) -> None:
 
 def test_preset_loads(browser, url) -> None:
     page, console = open_explorer(browser, url)
-    page.locator("select").first.select_option(label="Fig. 7b: T(tau), psi = 2.41, 6.46, 28.35")
+    page.locator("select").first.select_option(label=PRESETS["fig7b"].label)
     page.wait_for_function("() => __psi() === 6.46", timeout=20_000)
     page.wait_for_function("() => (__col('force_family', 'label') || []).length === 3")
     assert column(page, "force_marker", "x")[0] == pytest.approx(math.pi / 2)
@@ -614,6 +614,7 @@ def test_the_presentation_view_fits_one_screen(browser, url, width: int, height:
     shown = presented(page, width, height)
     page.wait_for_timeout(1000)  # the controls' text laid out
     assert page.evaluate(JS_OVERFLOWS) == []
+    assert page.evaluate(JS_CLIPPED_OPTIONS) == []
     assert column(page, "spheres_badge", "text") == [phase_of(3.5, math.pi / 6, 17 * math.pi / 24)]
     if width in (1280, 1920):
         ARTIFACTS.mkdir(exist_ok=True)
@@ -634,6 +635,30 @@ def test_the_presentation_view_fits_one_screen(browser, url, width: int, height:
     assert "psi=3.5" in page.evaluate("() => location.search")
     assert errors(console) == []
     page.close()
+
+
+#: The options of every select whose text is wider than the select shows it (its width
+#: less its padding, which holds the arrow), measured in the select's own font:
+#: (option, by how many px). A select's scrollWidth does not tell.
+JS_CLIPPED_OPTIONS = """() => {
+  const found = [];
+  const ctx = document.createElement("canvas").getContext("2d");
+  const walk = (root) => {
+    for (const el of root.querySelectorAll("*")) {
+      if (el.shadowRoot) walk(el.shadowRoot);
+      if (el.tagName !== "SELECT" || el.clientWidth === 0) continue;
+      const cs = getComputedStyle(el);
+      ctx.font = cs.font;
+      const room = el.clientWidth - parseFloat(cs.paddingLeft) - parseFloat(cs.paddingRight);
+      for (const o of el.options) {
+        const over = ctx.measureText(o.text).width - room;
+        if (over > 0) found.push([o.text, Math.round(over)]);
+      }
+    }
+  };
+  walk(document);
+  return found;
+}"""
 
 
 #: Elements that overflow their box or stick out of their card: (what, by how many px).
@@ -670,12 +695,13 @@ JS_OVERFLOWS = """() => {
                                                (1280, 720), (1920, 1080), (2560, 1440)])
 def test_nothing_is_clipped_from_a_phone_to_2560_wide(browser, url, width: int,
                                                       height: int) -> None:
-    """The formulas (partial stick's, the longest), the tables and every card's text fit
-    their cards at every screen size, a phone's and a tablet's included: nothing
-    overflows or is scrolled out of view."""
+    """The formulas (partial stick's, the longest), the tables, every card's text and
+    every option of the menus fit their boxes at every screen size, a phone's and a
+    tablet's included: nothing overflows or is scrolled out of view."""
     page, console = open_explorer(browser, url, width=width, height=height)
     page.wait_for_function("() => document.querySelectorAll('*').length > 0")
     page.wait_for_timeout(1500)  # KaTeX typeset
     assert page.evaluate(JS_OVERFLOWS) == []
+    assert page.evaluate(JS_CLIPPED_OPTIONS) == []  # every preset's name shows whole
     assert errors(console) == []
     page.close()
