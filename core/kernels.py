@@ -7,6 +7,13 @@ Callers validate; ``Contact``, ``core.batch`` and ``core.curve`` are the public 
 
 Layout of ``rows``: contact r (psi[r], sin_half_e[r]) at the times tau[r] (or tau[0] for
 every contact when tau has one row), written to out[r]; all arrays C-contiguous.
+
+Two habits for speed on short rows (a contact on a few tens of points, as a DEM rule
+computes it): arrays are indexed in place, never sliced into views (a view costs two
+reference-count updates, 10-15 ns, as much as a few points); and a loop over times whose
+formula branches on psi <= 1 is written twice under one test of psi, so that each copy
+compiles without the other's terms (full stick then skips partial stick's division and
+second square root). The values are the same, bit for bit.
 """
 
 from __future__ import annotations
@@ -50,32 +57,35 @@ def rows(q: int, tau: np.ndarray, psi: np.ndarray, sin_half_e: np.ndarray,
         inv_s = 1.0 / sin_half_e[r]
         k = stick_clock(p)
         scale = force_scale(sin_half_e[r])
-        t = tau[r if tau.shape[0] > 1 else 0]
-        o = out[r]
+        i = r if tau.shape[0] > 1 else 0
         if q == TANGENTIAL_FORCE:
-            for j in range(n):
-                o[j] = _tangential(t[j], p, inv_s, k, scale)
+            if p <= 1.0:  # the same loop twice (module docstring)
+                for j in range(n):
+                    out[r, j] = _tangential(tau[i, j], p, inv_s, k, scale)
+            else:
+                for j in range(n):
+                    out[r, j] = _tangential(tau[i, j], p, inv_s, k, scale)
         elif q == NORMAL_FORCE:
             for j in range(n):
-                o[j] = normal_force(cube(one_minus_square(clock(t[j], inv_s))), scale)
+                out[r, j] = normal_force(cube(one_minus_square(clock(tau[i, j], inv_s))), scale)
         elif q == STICK_RADIUS:
             for j in range(n):
-                o[j] = math.sqrt(stick_radius_squared(clock(t[j], inv_s), p, k))
+                out[r, j] = math.sqrt(stick_radius_squared(clock(tau[i, j], inv_s), p, k))
         elif q == STICK_RADIUS_SQUARED:
             for j in range(n):
-                o[j] = stick_radius_squared(clock(t[j], inv_s), p, k)
+                out[r, j] = stick_radius_squared(clock(tau[i, j], inv_s), p, k)
         elif q == CONTACT_RADIUS:
             for j in range(n):
-                o[j] = math.sqrt(one_minus_square(clock(t[j], inv_s)))
+                out[r, j] = math.sqrt(one_minus_square(clock(tau[i, j], inv_s)))
         elif q == APPROACH:
             for j in range(n):
-                o[j] = one_minus_square(clock(t[j], inv_s))
+                out[r, j] = one_minus_square(clock(tau[i, j], inv_s))
         elif q == CLOCK:
             for j in range(n):
-                o[j] = clock(t[j], inv_s)
+                out[r, j] = clock(tau[i, j], inv_s)
         else:
             for j in range(n):
-                o[j] = phase(clock(t[j], inv_s), p, k)
+                out[r, j] = phase(clock(tau[i, j], inv_s), p, k)
 
 
 @njit(cache=True)
@@ -114,15 +124,15 @@ def _grid_pieces(psi: float, tau0: float, t1: float, n: int
 @njit(cache=True, inline="always")
 def _fill_grid(tau0: float, e2: float, e3: float, tau_end: float, c0: int, c1: int,
                c2: int, out: np.ndarray) -> None:
-    """``tau_grid`` into out[:c0 + c1 + c2 + 1]: piece [a, b) of k points is
+    """``tau_grid`` into out[0, :c0 + c1 + c2 + 1]: piece [a, b) of k points is
     a + i (b - a)/k, i = 0 ... k - 1, then pi - tau0."""
     pos = 0
     for a, b, k in ((tau0, HALF_PI_HI, c0), (HALF_PI_HI, e2, c1), (e2, e3, c2)):
         step = (b - a) / k if k else 0.0
         for j in range(k):
-            out[pos + j] = j * step + a
+            out[0, pos + j] = j * step + a
         pos += k
-    out[pos] = tau_end
+    out[0, pos] = tau_end
 
 
 @njit(cache=True)
@@ -131,9 +141,20 @@ def tau_grid(psi: float, tau0: float, t1: float, n: int) -> np.ndarray:
     psi > 1) and pi - tau0 exactly, uniform on each phase, with n/8 extra points in
     partial stick."""
     a, e2, e3, end, c0, c1, c2, size = _grid_pieces(psi, tau0, t1, n)
-    out = np.empty(size)
+    out = np.empty((1, size))
     _fill_grid(a, e2, e3, end, c0, c1, c2, out)
-    return out
+    return out[0]
+
+
+@njit(cache=True, inline="always")
+def _force_and_radius(out: np.ndarray, psi: float, inv_s: float, k: float,
+                      scale: float) -> None:
+    """T / T0 and b / a* (rows 1, 2 of out) at the times of row 0."""
+    for j in range(out.shape[1]):
+        w = clock(out[0, j], inv_s)
+        b2 = stick_radius_squared(w, psi, k)
+        out[1, j] = tangential_force(cube(one_minus_square(w)), cube(b2), w, psi, scale)
+        out[2, j] = math.sqrt(b2)
 
 
 @njit(cache=True)
@@ -145,14 +166,12 @@ def curve(psi: float, tau0: float, n: int) -> tuple[np.ndarray, float]:
     t1 = min(tau1(psi, s, c), math.pi - tau0)
     a, e2, e3, end, c0, c1, c2, size = _grid_pieces(psi, tau0, t1, n)
     out = np.empty((3, size))
-    t, T, b = out[0], out[1], out[2]
-    _fill_grid(a, e2, e3, end, c0, c1, c2, t)
+    _fill_grid(a, e2, e3, end, c0, c1, c2, out)
     inv_s = 1.0 / s
     k = stick_clock(psi)
     scale = force_scale(s)
-    for j in range(size):
-        w = clock(t[j], inv_s)
-        b2 = stick_radius_squared(w, psi, k)
-        T[j] = tangential_force(cube(one_minus_square(w)), cube(b2), w, psi, scale)
-        b[j] = math.sqrt(b2)
+    if psi <= 1.0:  # the same loop twice (module docstring)
+        _force_and_radius(out, psi, inv_s, k, scale)
+    else:
+        _force_and_radius(out, psi, inv_s, k, scale)
     return out, impulse_ratio_float(psi, s * s, c * c)
