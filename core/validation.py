@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -67,7 +68,7 @@ class Interval:
             ok &= np.less(x, self.hi) if self.hi_open else np.less_equal(x, self.hi)
         return ok
 
-    @property
+    @cached_property
     def closed_bounds(self) -> tuple[float, float]:
         """(lo, hi) such that a float x is inside exactly when lo <= x <= hi: open ends
         moved inward by one ulp, infinite ends as -inf, inf (then also check finiteness)."""
@@ -78,9 +79,14 @@ class Interval:
         return lo, hi
 
     def contains(self, x: float) -> bool:
-        """True when x is a real number (not a bool) inside the interval."""
+        """True when x is a real number (not a bool) inside the interval (compared with
+        ``closed_bounds`` in plain floats: the same answer as ``_holds``, without its
+        numpy calls on one number)."""
         v = _as_float(x)
-        return v is not None and bool(self._holds(v))
+        if v is None or not math.isfinite(v):
+            return False
+        lo, hi = self.closed_bounds
+        return lo <= v <= hi
 
     def describe(self) -> str:
         """Interval notation, e.g. '(-1, 0.5]', '(0, inf)', '(-inf, inf)'."""
@@ -163,9 +169,11 @@ def as_reals(x: ArrayLike, name: str) -> NDArray[np.float64]:
         with np.errstate(over="ignore"):  # long double beyond float64: inf, refused below
             a = a.astype(np.float64)
     domain = DOMAIN[name]
-    if a.size and not (domain.contains(a.min()) and domain.contains(a.max())):
-        if a.ndim == 0:
+    if a.ndim == 0:
+        if not domain.contains(a[()]):
             domain.check(name, a[()])
+        return a
+    if a.size and not (domain.contains(a.min()) and domain.contains(a.max())):
         first = np.unravel_index(np.flatnonzero(~domain._holds(a))[0], a.shape)
         domain.check(f"{name}[{', '.join(str(int(i)) for i in first)}]", a[first])
     return a
