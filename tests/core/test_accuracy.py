@@ -124,3 +124,35 @@ def test_textbook_F_really_fails_where_the_stable_one_does_not() -> None:
     exact = ref.F0(tau0)
     assert rel(textbook, exact) > 1e-3
     assert rel(Contact(1.0, tau0).F0, exact) < TOL
+
+
+def test_the_series_of_J_about_one_tenth() -> None:
+    """J(m) for m < 0.2 (``quartic_series``): its 14 coefficients are the Taylor
+    coefficients of (3 pi/16) 2F1(1/2, 1/2; 3; m) about 0.1 to within 1-2 ulp, the first
+    omitted term is below 1e-17 J on the whole range, and the sum is within 3e-16 of J
+    at 2001 points of [0, 0.2] and at its ends (where |m - 0.1| is largest)."""
+    from core.elliptic import (
+        _N_TERMS,
+        SERIES_CENTRE,
+        SERIES_LIMIT,
+        _series_coefficients,
+        quartic_series,
+    )
+
+    half, three = mp.mpf(1) / 2, mp.mpf(3)
+
+    def coefficient(k: int) -> mp.mpf:
+        return (3 * mp.pi / 16 * mp.rf(half, k) ** 2 / (mp.rf(three, k) * mp.factorial(k))
+                * mp.hyp2f1(half + k, half + k, three + k, mp.mpf(SERIES_CENTRE)))
+
+    def J(m: float) -> mp.mpf:
+        return 3 * mp.pi / 16 * mp.hyp2f1(half, half, three, mp.mpf(m))
+
+    with mp.workdps(50):
+        got = _series_coefficients(_N_TERMS, SERIES_CENTRE)[::-1]
+        assert max(rel(a, coefficient(k)) for k, a in enumerate(got)) < 3e-16
+        radius = mp.mpf(SERIES_LIMIT - SERIES_CENTRE)
+        assert coefficient(_N_TERMS) * radius**_N_TERMS < 1e-17 * J(SERIES_LIMIT)
+        ms = [0.0, 1e-300, *np.linspace(0.0, SERIES_LIMIT, 2001)[1:-1],
+              np.nextafter(SERIES_LIMIT, 0.0)]
+        assert max(rel(quartic_series(m), J(m)) for m in ms) < 3e-16
