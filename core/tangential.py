@@ -202,9 +202,13 @@ def impulse_ratio_of_psis(psi: np.ndarray, m0: float, mc0: float) -> np.ndarray:
         above = _ratio_of(k2, quartic_series(min(m1, SERIES_LIMIT)), j0)
         o[i] = p if p <= 1.0 else above
     if m0 >= SERIES_LIMIT:  # else k^2 m0 < m0 < SERIES_LIMIT for every psi > 1
+        # k^2 m0 = 2 m0 / (psi + 1) falls with psi: only psi + 1 <= 2 m0 / SERIES_LIMIT
+        # can reach the limit (the margin, 1e-12, is far above the rounding of either
+        # side), so most elements skip the division of the exact test
+        reach = 2.0 * m0 / SERIES_LIMIT * (1.0 + 1e-12)
         for i in range(flat.size):
             p = flat[i]
-            if p > 1.0 and _k2_and_m1(p, m0)[1] >= SERIES_LIMIT:
+            if 1.0 < p and p + 1.0 <= reach and _k2_and_m1(p, m0)[1] >= SERIES_LIMIT:
                 o[i] = ratio_above_one(p, m0, mc0, j0)
     return out
 
