@@ -5,13 +5,15 @@ card (selectors whose callbacks run on the server, only the chosen view sent) an
 stand-alone HTML pages that `benchmarks/methods.py` and `benchmarks/stability_map.py`
 write (the same selectors run in the browser, every view in the page).
 
-- **Speed against accuracy** (speed_accuracy.csv): time per contact against error, per
-  view (all cases, one regime, or one case; relative or absolute error): every run of a
-  method as a faint marker, its Pareto front as a line (no faster run of it is more
-  accurate), the closed form as a labelled star at its measured error, a grey band for
-  the float64 floor (the closed form's own worst error against 50-digit mpmath: below
-  it errors are not resolved); quadrature of core's T, a check of eq 41 that needs the
-  closed form, in a second plot. Okabe-Ito colours and one marker shape per method.
+- **Speed against accuracy** (speed_accuracy.csv): time per contact (one call each from
+  Python, the call included; docs/numerics.md has the times many contacts a call)
+  against error, per view (all cases, one regime, or one case; relative or absolute
+  error): every run of a method as a faint marker, its Pareto front as a line (no
+  faster run of it is more accurate), the closed form as a labelled star at its
+  measured error, a grey band for the float64 floor (the closed form's own worst error
+  against 50-digit mpmath: below it errors are not resolved); quadrature of core's T, a
+  check of eq 41 that needs the closed form, in a second plot. Okabe-Ito colours and
+  one marker shape per method.
 - **Stability map** (stability_map.csv): the error of one method at a fixed resolution
   over (psi, tau0), on a log colour scale over the whole range of the data (from 1e-16
   to the worst error, the printed closed form's included); psi on a log axis, tau0 in
@@ -194,7 +196,7 @@ class SpeedAccuracyChart:
 def _speed_figure(title: str, methods: tuple[str, ...], floor: float, **kwargs
                   ) -> tuple[figure, dict, list[LegendItem]]:
     fig = figure(title=title, x_axis_type="log", y_axis_type="log",
-                 x_axis_label="time per contact (s)",
+                 x_axis_label="time per contact, one call each from Python (s)",
                  y_axis_label="error (worst over the cases shown)",
                  x_range=(1e-7, 10), y_range=(FLOOR / 2, 10), **kwargs)
     fig.add_layout(BoxAnnotation(bottom=FLOOR / 2, top=floor, fill_color="#bbbbbb",
