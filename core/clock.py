@@ -29,6 +29,8 @@ import math
 import numpy as np
 from numba import njit
 
+from core.horner import horner
+
 HALF_PI_HI = math.pi / 2
 HALF_PI_LO = 6.123233995736766e-17  # pi/2 - HALF_PI_HI
 TWO_PI = 2 * math.pi
@@ -37,29 +39,18 @@ TWO_PI = 2 * math.pi
 # for |n| < 2**20, so tau - n pi/2 keeps full relative accuracy for |tau| up to ~1e5.
 _P0, _P1, _P2 = 1.57079632673412561417e00, 6.07710050630396597660e-11, 2.02226624871116645580e-21
 
-# Taylor coefficients of sin(u) / u - 1 in powers of u^2, (-1)^k / (2k + 1)!, k = 1 ... 10.
-# On |u| <= pi/2 the first omitted term, u^23 / 23!, is below 1.3e-18 sin(u): the
-# polynomial is exact to rounding (1-2 ulp), and unlike a library sine it has no branch,
-# so the loops over times compile to SIMD code.
-_S3, _S5, _S7, _S9, _S11, _S13, _S15, _S17, _S19, _S21 = (
-    (-1.0) ** k / math.factorial(2 * k + 1) for k in range(1, 11))
+# Taylor coefficients of sin(u) / u - 1 in powers of u^2, (-1)^k / (2k + 1)!, k = 10 ... 1
+# (highest first). On |u| <= pi/2 the first omitted term, u^23 / 23!, is below
+# 1.3e-18 sin(u): the polynomial is exact to rounding (1-2 ulp), and unlike a library sine
+# it has no branch, so the loops over times compile to SIMD code.
+_SINE = tuple((-1.0) ** k / math.factorial(2 * k + 1) for k in range(10, 0, -1))
 
 
 @njit(cache=True, inline="always")
 def sine(u: float) -> float:
     """sin(u) for |u| <= pi/2 (Taylor to u^21, 1-2 ulp); the argument of every clock."""
     z = u * u
-    p = _S21
-    p = p * z + _S19
-    p = p * z + _S17
-    p = p * z + _S15
-    p = p * z + _S13
-    p = p * z + _S11
-    p = p * z + _S9
-    p = p * z + _S7
-    p = p * z + _S5
-    p = p * z + _S3
-    return u + (u * z) * p
+    return u + (u * z) * horner(z, _SINE)
 
 
 @njit(cache=True, inline="always")

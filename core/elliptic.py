@@ -33,6 +33,8 @@ from numba import float64, njit, types, vectorize
 from numba.extending import get_cython_function_address
 from numpy.typing import ArrayLike, NDArray
 
+from core.horner import horner
+
 SERIES_LIMIT = 0.2
 SERIES_CENTRE = 0.1
 _N_TERMS = 14
@@ -67,10 +69,7 @@ def _series_coefficients(n: int, centre: float) -> tuple[float, ...]:
     return tuple(a[::-1])
 
 
-# the 14 coefficients, highest power first, as named constants: the polynomial below is
-# written out term by term (a loop over a tuple keeps numba from vectorising its callers)
-(_A13, _A12, _A11, _A10, _A9, _A8, _A7, _A6, _A5, _A4, _A3, _A2, _A1,
- _A0) = _series_coefficients(_N_TERMS, SERIES_CENTRE)
+_COEFFICIENTS = _series_coefficients(_N_TERMS, SERIES_CENTRE)
 
 
 @njit(cache=True, inline="always")
@@ -79,21 +78,7 @@ def quartic_series(m: float) -> float:
     0 <= m <= SERIES_LIMIT: straight-line code with no branch, so that loops over many m
     compile to SIMD code. m - 0.1 is exact for m >= 0.05 (Sterbenz) and within 7e-18
     below, which moves J by less than 1e-17 of itself."""
-    d = m - SERIES_CENTRE
-    acc = _A13
-    acc = acc * d + _A12
-    acc = acc * d + _A11
-    acc = acc * d + _A10
-    acc = acc * d + _A9
-    acc = acc * d + _A8
-    acc = acc * d + _A7
-    acc = acc * d + _A6
-    acc = acc * d + _A5
-    acc = acc * d + _A4
-    acc = acc * d + _A3
-    acc = acc * d + _A2
-    acc = acc * d + _A1
-    return acc * d + _A0
+    return horner(m - SERIES_CENTRE, _COEFFICIENTS)
 
 
 @njit(cache=True)
