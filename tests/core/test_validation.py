@@ -165,6 +165,18 @@ def test_interval_contains(name: str, inside: list, outside: list) -> None:
         assert not domain.contains(x)
 
 
+def test_contains_is_the_element_wise_check_at_every_edge() -> None:
+    """``contains`` (plain float comparisons with ``closed_bounds``) answers as the numpy
+    element-wise check does, at each end of every interval and one ulp either side."""
+    for name, domain in DOMAIN.items():
+        values = [0.0, 1.0, -1.0, math.inf, -math.inf, math.nan, 1e308, -1e308]
+        for end in (domain.lo, domain.hi):
+            if end is not None:
+                values += [end, math.nextafter(end, math.inf), math.nextafter(end, -math.inf)]
+        for x in values:
+            assert domain.contains(x) == bool(domain._holds(x)), (name, x)
+
+
 def test_check_param_returns_floats_and_short_messages() -> None:
     assert check_param("psi", 3) == 3.0 and type(check_param("psi", np.int8(3))) is float
     cases = [
