@@ -20,7 +20,7 @@ timing (``head_to_head``): per case, the fastest peer at each target, the closed
 interleaved so that a burst of load on the shared machine hits all of them alike.
 ``call_floors`` times numba functions that only return new arrays of each method's
 size: the cost of the call itself, under any method with that interface. That cost
-(0.7-1.1 us) is the interpreter's, not the method's, and at 1e-2 it is most of every
+(0.6-1.0 us) is the interpreter's, not the method's, and at 1e-2 it is most of every
 method's time; so the head-to-head runs are timed once more many contacts a call
 (``batched``: the kernel looped in compiled code, as a DEM code or a sweep over a rod
 runs it, the same count rule for every method) and reported per contact as well.
@@ -192,7 +192,7 @@ def batched(name: str, psi: float, tau0: float, resolution: int, steps: int | No
             seconds_each: float) -> tuple[int, Callable[[], float]]:
     """(count, call): ``count`` contacts by ``name`` in one compiled call, count chosen
     by one rule for every method (a call of about BATCH_SECONDS, given one contact's
-    time ``seconds_each``), so that the call from Python, 0.7-1.1 us whatever the method
+    time ``seconds_each``), so that the call from Python, 0.6-1.0 us whatever the method
     (``call_floors``), is shared by the contacts: per-contact time = call time / count."""
     kernel, args, check = compiled(name, psi, tau0, resolution, steps)
     count = max(1, round(BATCH_SECONDS / seconds_each))
