@@ -78,15 +78,16 @@ class Interval:
             math.nextafter(self.hi, -math.inf) if self.hi_open else self.hi)
         return lo, hi
 
-    def contains(self, x: float) -> bool:
-        """True when x is a real number (not a bool) inside the interval (compared with
-        ``closed_bounds`` in plain floats: the same answer as ``_holds``, without its
-        numpy calls on one number)."""
-        v = _as_float(x)
-        if v is None or not math.isfinite(v):
-            return False
+    def _holds_float(self, v: float) -> bool:
+        """``_holds`` of one float, compared with ``closed_bounds`` in plain floats (the
+        same answer without numpy's calls on one number)."""
         lo, hi = self.closed_bounds
-        return lo <= v <= hi
+        return math.isfinite(v) and lo <= v <= hi
+
+    def contains(self, x: float) -> bool:
+        """True when x is a real number (not a bool) inside the interval."""
+        v = _as_float(x)
+        return v is not None and self._holds_float(v)
 
     def describe(self) -> str:
         """Interval notation, e.g. '(-1, 0.5]', '(0, inf)', '(-inf, inf)'."""
@@ -99,7 +100,7 @@ class Interval:
         the parameter, its value and the allowed range otherwise (strings, booleans, nan,
         inf and out-of-range numbers alike)."""
         v = _as_float(value)
-        if v is not None and self._holds(v):
+        if v is not None and self._holds_float(v):
             return v
         where = "" if self.lo is None and self.hi is None else f" in {self.describe()}"
         if v is None:

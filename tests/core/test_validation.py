@@ -166,15 +166,22 @@ def test_interval_contains(name: str, inside: list, outside: list) -> None:
 
 
 def test_contains_is_the_element_wise_check_at_every_edge() -> None:
-    """``contains`` (plain float comparisons with ``closed_bounds``) answers as the numpy
-    element-wise check does, at each end of every interval and one ulp either side."""
+    """``contains`` and ``check`` (plain float comparisons with ``closed_bounds``) answer
+    as the numpy element-wise check does, at each end of every interval and one ulp
+    either side."""
     for name, domain in DOMAIN.items():
         values = [0.0, 1.0, -1.0, math.inf, -math.inf, math.nan, 1e308, -1e308]
         for end in (domain.lo, domain.hi):
             if end is not None:
                 values += [end, math.nextafter(end, math.inf), math.nextafter(end, -math.inf)]
         for x in values:
-            assert domain.contains(x) == bool(domain._holds(x)), (name, x)
+            inside = bool(domain._holds(x))
+            assert domain.contains(x) == inside, (name, x)
+            if inside:
+                assert domain.check(name, x) == x
+            else:
+                with pytest.raises(ValueError, match=name):
+                    domain.check(name, x)
 
 
 def test_check_param_returns_floats_and_short_messages() -> None:
