@@ -18,8 +18,8 @@ where the textbook difference sin tau - sin tau0 loses its digits.
 pi/2 is split into a double-double pair so that e and u are exact to a few ulp even when
 they are tiny (grazing contact with tau0 within 1e-8 of pi/2).
 
-Every function here is a numba kernel of one float (``@njit(cache=True)``): the compiled
-loops of ``core.kernels`` inline them, and Python may call them directly.
+Every function here is a numba kernel of one float (``@njit(cache=True, nogil=True)``):
+the compiled loops of ``core.kernels`` inline them, and Python may call them directly.
 """
 
 from __future__ import annotations
@@ -59,7 +59,7 @@ def half_width(tau0: float) -> float:
     return (HALF_PI_HI - tau0) + HALF_PI_LO
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def half_sines(tau0: float) -> tuple[float, float]:
     """(sin(e/2), cos(e/2)) for e = pi/2 - tau0: the scale of the clock and of eq 11's
     m0 = sin^2(e/2) = (1 - sin tau0)/2, mc0 = cos^2(e/2). cos(e/2) is taken as

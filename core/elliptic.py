@@ -81,7 +81,7 @@ def quartic_series(m: float) -> float:
     return horner(m - SERIES_CENTRE, _COEFFICIENTS)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def quartic_integral_float(m: float, mc: float) -> float:
     """J(m) for one float m, with mc = 1 - m given (see ``quartic_integral``)."""
     if m < SERIES_LIMIT:

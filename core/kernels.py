@@ -1,4 +1,5 @@
-"""Compiled loops of the closed form over times and contacts (numba, ``@njit(cache=True)``).
+"""Compiled loops of the closed form over times and contacts (numba, ``@njit``, cached,
+releasing the GIL).
 
 The formulas are those of ``core.clock``, ``core.hertz`` and ``core.tangential`` (each
 written once, as a kernel of one float); this module only loops them over arrays, one
@@ -47,7 +48,7 @@ def _tangential(tau: float, psi: float, inv_s: float, k: float, scale: float) ->
     return tangential_force(a3, cube(stick_radius_squared(w, psi, k)), w, psi, scale)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def rows(q: int, tau: np.ndarray, psi: np.ndarray, sin_half_e: np.ndarray,
          out: np.ndarray) -> None:
     """Quantity q (a code above) of contact r at times tau[r] (or tau[0]) into out[r]."""
@@ -88,7 +89,7 @@ def rows(q: int, tau: np.ndarray, psi: np.ndarray, sin_half_e: np.ndarray,
                 out[r, j] = phase(clock(tau[i, j], inv_s), p, k)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def half_sines_of(tau0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(sin(e/2), cos(e/2)) of every element of tau0 (``core.clock.half_sines``), as two
     arrays of tau0's shape."""
@@ -135,7 +136,7 @@ def _fill_grid(tau0: float, e2: float, e3: float, tau_end: float, c0: int, c1: i
     out[0, pos] = tau_end
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def tau_grid(psi: float, tau0: float, t1: float, n: int) -> np.ndarray:
     """About n sorted times over [tau0, pi - tau0] holding tau0, pi/2, tau1 (= t1, when
     psi > 1) and pi - tau0 exactly, uniform on each phase, with n/8 extra points in
@@ -157,7 +158,7 @@ def _force_and_radius(out: np.ndarray, psi: float, inv_s: float, k: float,
         out[2, j] = math.sqrt(b2)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def curve(psi: float, tau0: float, n: int) -> tuple[np.ndarray, float]:
     """One contact in one call: rows (tau, T / T0, b / a*) on ``tau_grid`` of about n
     points (written straight into the first row), and the impulse ratio

@@ -12,7 +12,7 @@ so partial stick ends at w = k, i.e. tau1 = pi/2 + 2 arcsin(k sin(e/2)) (eq 31, 
 that keeps its digits for huge psi, where tau1 - pi/2 ~ 2 sqrt((1 - sin tau0)/psi), eq 35).
 Scales: traction in mu p*, force in T0 (eq 37), radii in a*.
 
-The formulas of one time point or one contact are numba kernels (``@njit(cache=True)``),
+The formulas of one time point or one contact are numba kernels (``@njit(cache=True, nogil=True)``),
 inlined by the compiled loops of ``core.kernels``; ``impulse_ratio`` is their element-wise
 form over arrays.
 """
@@ -56,7 +56,7 @@ def stick_clock(psi: float) -> float:
     return math.sqrt(2.0 / (psi + 1.0))
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def tau1(psi: float, sin_half_e: float, cos_half_e: float) -> float:
     """End of partial stick, pi/2 < tau1 <= pi - tau0 (eq 31); nan for psi <= 1.
 
@@ -84,7 +84,7 @@ def tau1(psi: float, sin_half_e: float, cos_half_e: float) -> float:
     return _first_counter_slip(t, k, 1.0 / sin_half_e)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _first_counter_slip(t: float, k: float, inv_sin_half_e: float) -> float:
     """The first float at or near t whose clock is >= k (the clock rises through k)."""
     for _ in range(64):  # the formula is a few ulp off; the bound only guards the loop
@@ -147,7 +147,7 @@ def traction(r: ArrayLike, w: NDArray[np.float64], a2: NDArray[np.float64],
     return out + 2.0 * pressure(r, b2)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def impulse_ratio_float(psi: float, m0: float, mc0: float) -> float:
     """T_imp / (mu P_imp) (eq 41) of one contact, from psi and m0 = sin^2(e/2) =
     (1 - sin tau0)/2, mc0 = cos^2(e/2) = 1 - m0.
@@ -181,7 +181,7 @@ def ratio_above_one(psi: float, m0: float, mc0: float, j0: float) -> float:
     return _ratio_of(k2, quartic_integral_float(m1, (psi - 1.0) / (psi + 1.0) + k2 * mc0), j0)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, nogil=True, error_model="numpy")
 def impulse_ratio_of_psis(psi: np.ndarray, m0: float, mc0: float) -> np.ndarray:
     """``impulse_ratio_float`` of every element of psi at one tau0, bit for bit (J(m0)
     computed once).

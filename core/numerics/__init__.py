@@ -4,8 +4,10 @@ Every method integrates the same loading history (eq 3) with Hertz geometry (eqs
 and Coulomb's law, never the closed form of ``core`` (except ``quad`` and
 ``gauss_legendre``, which integrate core's T(tau) to test the impulse formula eq 41).
 Units: see ``core.numerics.result``. The time-stepping methods (MDR, annulus, DEM) are
-numba kernels (``@njit(cache=True)``): the first call in a fresh environment compiles
-them (a few seconds, cached on disk afterwards), and ``solve`` times the run only.
+numba kernels (``@njit(cache=True, nogil=True)``: they release the GIL, so a worker
+thread running one does not stall the server's event loop): the first call in a fresh
+environment compiles them (a few seconds, cached on disk afterwards), and ``solve`` times
+the run only.
 
     from core.numerics import solve, METHODS, INTERACTIVE_RESOLUTION, MethodResult
     res = solve("mdr", contact, resolution=200)             # 200 springs, default steps

@@ -82,7 +82,7 @@ def compliance(n: int) -> NDArray[np.float64]:
     return C
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def ring_pressure(edges: NDArray[np.float64], a: float) -> NDArray[np.float64]:
     """Ring averages of the Hertz pressure p / p* = sqrt(a^2 - r^2)_+ (eq 6)."""
     n = edges.size - 1
@@ -95,7 +95,7 @@ def ring_pressure(edges: NDArray[np.float64], a: float) -> NDArray[np.float64]:
     return out
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _lu(A):
     """In-place LU factorisation with partial pivoting; returns the pivot rows."""
     m = A.shape[0]
@@ -121,7 +121,7 @@ def _lu(A):
     return piv
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _lu_solve(LU, piv, rhs):
     m = rhs.size
     y = np.empty(m)
@@ -138,7 +138,7 @@ def _lu_solve(LU, piv, rhs):
     return y
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def coulomb_step(C, tau_old, stick, p, d_delta, cache_idx, cache_lu, cache_piv):
     """Tractions after one step by an active-set iteration on Coulomb's law.
 
@@ -212,7 +212,7 @@ def coulomb_step(C, tau_old, stick, p, d_delta, cache_idx, cache_lu, cache_piv):
     return new, cache_idx, cache_lu, cache_piv
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def march(C, edges, a_all, delta, scale):
     """March the rings over the contact radii ``a_all`` (a / a*) and the drive ``delta``
     (both per time step); returns (T / T0, b / a*)."""
@@ -245,7 +245,7 @@ def march(C, edges, a_all, delta, scale):
     return T, b
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _stick_radius(edges, stick, inside, a):
     """Outer edge of the central block of stick rings (a when every ring sticks)."""
     m = 0
@@ -260,7 +260,7 @@ def _stick_radius(edges, stick, inside, a):
     return a
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def contact(psi, tau0, C, steps):
     """One contact from (psi, tau0) with the compliance C of n rings and about ``steps``
     time steps on ``loading.time_grid``: returns (tau, T / T0, b / a*, impulse ratio)."""

@@ -82,7 +82,7 @@ MODELS: dict[str, int] = {
 }
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def lammps(psi, tau0, tau, force_history, rescale, constant_k):
     """LAMMPS granular tangential models (mindlin, mindlin/force, mindlin_rescale,
     mindlin_rescale/force, linear_history) over the times ``tau``; returns F / T0 and the
@@ -121,7 +121,7 @@ def lammps(psi, tau0, tau, force_history, rescale, constant_k):
     return out, lim
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def liggghts(psi, tau0, tau):
     """LIGGGHTS-PUBLIC tangential_model_history (Hertz kt) over ``tau``; returns F / T0
     and mu P / T0."""
@@ -153,7 +153,7 @@ def liggghts(psi, tau0, tau):
     return out, lim
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def direnzo(psi, tau0, tau):
     """Di Renzo & Di Maio (2005): F = (2/3) k_t a xi, capped; returns F / T0 and
     mu P / T0."""
@@ -180,7 +180,7 @@ def direnzo(psi, tau0, tau):
     return out, lim
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def forces(model, psi, tau0, tau):
     """(F / T0, mu P / T0) of ``model`` (a code of ``MODELS``) over the times ``tau``."""
     if model == LIGGGHTS:
@@ -192,7 +192,7 @@ def forces(model, psi, tau0, tau):
                   model == LAMMPS_LINEAR)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def contact(model, psi, tau0, steps):
     """One contact from (psi, tau0) with ``steps`` equal time steps over
     [tau0, pi - tau0]: returns (tau, F / T0, impulse ratio by the trapezoid rule)."""

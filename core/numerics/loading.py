@@ -43,7 +43,7 @@ def hertz_force(tau: ArrayLike, tau0: float) -> NDArray[np.float64]:
     return approach(tau, tau0) ** 1.5
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def partial_stick_estimate(psi: float, tau0: float, reversal: float = np.pi / 2) -> float:
     """Rough length of the partial-stick phase that follows a reversal of the tangential
     drive at tau = ``reversal``: 2 sqrt((sin tau_r - s0) / (psi |sin tau_r|)), the time
@@ -58,7 +58,7 @@ def partial_stick_estimate(psi: float, tau0: float, reversal: float = np.pi / 2)
     return 2.0 * math.sqrt((s - math.sin(tau0)) / (psi * abs(s)))
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def time_grid(psi: float, tau0: float, n: int) -> NDArray[np.float64]:
     """About ``n`` + 1 times over [tau0, pi - tau0] holding tau0, pi/2 and pi - tau0.
 
@@ -99,7 +99,7 @@ def time_grid(psi: float, tau0: float, n: int) -> NDArray[np.float64]:
     return grid
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def trapezoid(y: NDArray[np.float64], x: NDArray[np.float64]) -> float:
     """Trapezoid rule of y(x) on an increasing grid."""
     total = 0.0

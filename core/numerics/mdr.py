@@ -74,7 +74,7 @@ def spring_positions(n: int) -> NDArray[np.float64]:
     return (np.arange(n) + 0.5) / n
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _stick_radius(x, margin, m, d):
     """Radius b / a* of the central stick zone from the stick margins w - |u_trial| of
     the m springs in contact (d = a^2).
@@ -103,7 +103,7 @@ def _stick_radius(x, margin, m, d):
     return min(x0 + (x1 - x0) * m0 / (m0 - m1), a)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def march(x, d, drive, scale, u):
     """March the springs at positions ``x`` (increasing) over the approach ``d`` (w =
     d - x^2) and the tangential ``drive`` (both per time step, in the units above).
@@ -168,7 +168,7 @@ def march(x, d, drive, scale, u):
     return T, P, b, S
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def contact(psi, tau0, n, steps):
     """One contact of eq 3 from (psi, tau0): N = n springs, about ``steps`` time steps on
     ``loading.time_grid``. Returns (tau, T / T0, b / a*, impulse ratio, final u)."""
