@@ -10,7 +10,7 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from core import hertz, kernels, tangential
+from core import dissipation, hertz, kernels, tangential
 from core.clock import half_sines
 from core.elliptic import impulse_factor
 from core.physical import PhysicalInputs, Scales
@@ -74,13 +74,24 @@ class Contact:
         u0: float,
         h: float,
         omega: float,
+        R2: float | None = None,
+        G2: float | None = None,
+        nu2: float | None = None,
     ) -> Contact:
         """The contact of SI inputs (R, H, u0, h in m; G in Pa; omega in rad/s), with
         ``scales`` set. Each input must lie in its range of ``core.DOMAIN``, h in (-H, H),
         and psi of u0 / H in [0, 1e12] (ValueError naming the inputs otherwise); every
-        scale is then finite."""
-        inputs = PhysicalInputs(R=R, G=G, nu=nu, mu=mu, H=H, u0=u0, h=h, omega=omega)
-        c = cls(psi=inputs.psi, tau0=inputs.tau0, mu=inputs.mu, nu=inputs.nu)
+        scale is then finite.
+
+        A second, dissimilar body (R2 in m, inf for a flat face; G2 in Pa; nu2; each None:
+        body 1's value, the paper's identical spheres) enters under Goodman's
+        approximation: the contact is that of the equivalent identical pair
+        (``core.physical.equivalent_pair``), so ``nu`` is then its effective Poisson ratio
+        nu_eq, psi = 4 G* u0 / (mu E* H), and ``scales`` (also Dundurs' ``beta``) are
+        the pair's."""
+        inputs = PhysicalInputs(R=R, G=G, nu=nu, mu=mu, H=H, u0=u0, h=h, omega=omega,
+                                R2=R2, G2=G2, nu2=nu2)
+        c = cls(psi=inputs.psi, tau0=inputs.tau0, mu=inputs.mu, nu=inputs.equivalent[2])
         return replace(c, scales=Scales.of(inputs, c.F0, c.impulse_ratio))
 
     # ---- scalars -------------------------------------------------------------------
@@ -123,6 +134,33 @@ class Contact:
         """T_imp / (mu P_imp) (eq 41): psi for psi <= 1, largest (1) at psi = 1."""
         s, c = self._half_e
         return tangential.impulse_ratio_float(self.psi, s * s, c * c)
+
+    # ---- friction dissipation (core.dissipation) --------------------------------------
+    @cached_property
+    def dissipated_energy(self) -> float:
+        """D / (T0 u0): the work of the drive on the held body over one contact, all of it
+        dissipated by slip, (4/5)(1 - sin tau0)^(5/2)(psi - 1)/(psi + 1) for psi > 1 and
+        0 for psi <= 1 (docs/physics.md, section 11.2). ``scales.energy`` is T0 u0 (J)."""
+        return float(dissipation.energy(self.psi, self._half_e[0]))
+
+    def dissipation_density(self, r: ArrayLike) -> NDArray[np.float64]:
+        """q(r) / (T0 u0 / (pi a*^2)): the friction work per unit area over one contact at
+        radius r (units of a*), exact; 0 for psi <= 1 and outside r < 1, so that
+        int_0^1 q(r) 2 r dr = ``dissipated_energy``. ``scales.energy_density`` is
+        T0 u0 / (pi a*^2) (J/m^2)."""
+        return dissipation.density(self._radii(r), self.psi, self._half_e[0])
+
+    def dissipation_rate(self, r: ArrayLike, tau: ArrayLike) -> NDArray[np.float64]:
+        """Friction power per unit area at radius r (units of a*) and time tau, in units
+        of T0 u0 omega / (pi a*^2): |tau_u| times the slip speed (eqs 14, 21, 27); 0 in
+        the stick zone and outside contact; its integral over tau is
+        ``dissipation_density``. r broadcasts against tau."""
+        r, tau = self._radii(r), as_reals(tau, "tau")
+        line = self._timeline(tau)
+        if self.psi <= 1.0:
+            return np.zeros(np.broadcast_shapes(r.shape, tau.shape))
+        return dissipation.rate(r, tau, line.phase, line.approach, line.stick_radius_squared,
+                                self.psi, self._half_e[0])
 
     # ---- time grid -------------------------------------------------------------------
     def tau_grid(self, n: int = 400) -> NDArray[np.float64]:
