@@ -39,9 +39,8 @@ RUN python3 -c 'import sys; sys.exit(sys.version_info < (3, 12))' \
 # ---- pkg: the project itself, pip-installed from the build context ----------
 FROM ${BASE} AS pkg
 # The context holds only what .dockerignore lets through: pyproject.toml,
-# README.md, constraints.txt, core/, app/, docker/entrypoint.sh and
-# benchmarks/results/*.csv
-# (charted by the app's Methods scene, next to app/ as in the repository).
+# README.md, constraints.txt, core/, app/ (with its package data: the benchmark
+# results its Methods scene charts, app/results/) and docker/entrypoint.sh.
 WORKDIR /src
 COPY . .
 # /opt/zharii/lib: the installed packages core and app (+ metadata);
@@ -51,8 +50,7 @@ RUN python3 -m venv /tmp/pip \
          --no-deps --target /opt/zharii/lib '.[app]' \
     && ln -s lib/app /opt/zharii/app \
     && test -f /opt/zharii/app/main.py \
-    && mkdir -p /opt/zharii/lib/benchmarks/results \
-    && cp benchmarks/results/*.csv /opt/zharii/lib/benchmarks/results/ \
+    && test -f /opt/zharii/app/results/speed_accuracy.csv \
     && cp docker/entrypoint.sh /opt/zharii/entrypoint.sh \
     && chmod 0755 /opt/zharii/entrypoint.sh
 

@@ -13,7 +13,7 @@ PYTHON ?= $(shell for p in python3.13 python3.12 \
 	$$(ls -d "$$(pyenv root 2>/dev/null)"/versions/3.1[2-9]*/bin/python3 2>/dev/null) python3; do \
 	"$$p" -c 'import sys; sys.exit(sys.version_info < (3, 12))' >/dev/null 2>&1 && { echo "$$p"; break; }; done)
 
-.PHONY: venv serve test test-core test-app lint bench browser docker-smoke clean lock
+.PHONY: venv serve test test-core test-app lint bench bench-charts browser docker-smoke clean lock
 
 $(VENV)/.installed: pyproject.toml constraints.txt
 	@test -n "$(PYTHON)" || { echo "error: no Python >= 3.12 found; install one or pass PYTHON=/path/to/python3.12" >&2; exit 1; }
@@ -49,7 +49,13 @@ test-core: venv
 	$(VENV)/bin/pytest tests/core tests/numerics
 
 bench: venv
-	$(PY) benchmarks/core_throughput.py
+	$(PY) benchmarks/core/core_throughput.py
+
+# The charts of the methods' benchmarks (benchmarks/core/methods.py and stability_map.py
+# write benchmarks/results/*.csv): their HTML pages there, and the two CSV files the
+# Methods card shows copied into the app's package data (app/results/).
+bench-charts: venv
+	$(PY) -m app.benchmark_charts benchmarks/results --publish
 
 docker-smoke:
 	bash docker/smoke.sh
@@ -84,16 +90,16 @@ replica-smoke: venv nginx
 # 10, 25, 50, 100 sessions moving the psi slider every 0.3 s (about 6 minutes):
 # one server with a process per core, then two replicas behind nginx.
 load-test: venv
-	$(PY) benchmarks/load_test.py --serve 2
+	$(PY) benchmarks/app/load_test.py --serve 2
 
 load-test-replicas: venv nginx
-	$(PY) benchmarks/load_test.py --replicas 2
+	$(PY) benchmarks/app/load_test.py --replicas 2
 
 # Server memory: 50 + 50 page loads and their cleanup, then 10,000 psi moves in one
 # session (RSS sampled every 500; about 20 minutes on 2 cores).
 soak: venv
-	$(PY) benchmarks/soak.py
+	$(PY) benchmarks/app/soak.py
 
 # Server time of a page load: median of 20 sequential GETs of /main on an idle server.
 page-load: venv
-	$(PY) benchmarks/page_load.py
+	$(PY) benchmarks/app/page_load.py

@@ -1,9 +1,14 @@
-"""The charts of the numerical methods' benchmarks (`benchmarks/results/*.csv`).
+"""The charts of the numerical methods' benchmarks (speed_accuracy.csv, stability_map.csv).
+
+The explorer reads the files from its package data, `app/results/` (`RESULTS`).
+`benchmarks/core/methods.py` and `benchmarks/core/stability_map.py` write them to
+`benchmarks/results/`; `python -m app.benchmark_charts benchmarks/results --publish`
+(`make bench-charts`) renders their stand-alone HTML pages there and copies the two
+files to `app/results/`.
 
 Two charts, each built here once for both places it is shown: the explorer's Methods
 card (selectors whose callbacks run on the server, only the chosen view sent) and the
-stand-alone HTML pages that `benchmarks/methods.py` and `benchmarks/stability_map.py`
-write (the same selectors run in the browser, every view in the page).
+stand-alone HTML pages (the same selectors run in the browser, every view in the page).
 
 - **Speed against accuracy** (speed_accuracy.csv): time per contact (one call each from
   Python, the call included; docs/numerics.md has the times many contacts a call)
@@ -25,8 +30,10 @@ Presentation only: every number is the benchmarks'.
 
 from __future__ import annotations
 
-import csv
+import argparse
+import shutil
 from dataclasses import dataclass
+from importlib import resources
 from pathlib import Path
 
 import numpy as np
@@ -34,7 +41,9 @@ from bokeh.models import (
     BoxAnnotation,
     ColorBar,
     ColumnDataSource,
+    CustomJS,
     CustomJSTickFormatter,
+    Div,
     FixedTicker,
     HoverTool,
     Label,
@@ -42,24 +51,25 @@ from bokeh.models import (
     LegendItem,
     LogColorMapper,
     LogTicker,
+    Select,
 )
 from bokeh.palettes import Viridis256
 from bokeh.plotting import figure
 
 # ------------------------------------------------------------------ the result files
 
-#: Columns read as text and as whole numbers (every other column is a float).
-TEXT = {"method", "regime", "kind", "peer"}
-INTEGER = {"resolution", "steps", "points", "peer_points", "cf_n", "cf_points"}
+#: The results the explorer shows (speed_accuracy.csv, stability_map.csv): package
+#: data of `app`.
+RESULTS = resources.files("app") / "results"
 
 
-def read_rows(path: Path) -> list[dict]:
-    """The rows of a results CSV file, numbers back to int and float."""
-    def value(key: str, text: str):
-        return text if key in TEXT else int(text) if key in INTEGER else float(text)
-
+def read_rows(path) -> list[dict]:
+    """The rows of a results CSV file (a path or a `RESULTS` entry), each column as
+    numpy reads it: whole numbers as int, other numbers as float, text as str."""
     with path.open(newline="") as fh:
-        return [{k: value(k, v) for k, v in row.items()} for row in csv.DictReader(fh)]
+        table = np.atleast_1d(np.genfromtxt(fh, delimiter=",", names=True, dtype=None,
+                                            encoding="utf-8"))
+    return [dict(zip(table.dtype.names, row, strict=True)) for row in table.tolist()]
 
 
 # ------------------------------------------------------------- speed against accuracy
@@ -354,3 +364,103 @@ STABILITY_NOTE = (
     f"log(π/2 − τ₀ + {Y_SHIFT:g}) so that grazing contact (τ₀ near π/2) stays visible "
     "next to preload (τ₀ &lt; 0); the axis reads τ₀ in radians. <b>textbook</b> is the "
     "closed form as printed (eq 11 with ellipk/ellipe, τ₁ = π − arcsin(...)).")
+
+
+# ------------------------------------------------------------------ stand-alone pages
+
+
+def speed_accuracy_page(rows: list[dict], path: Path) -> None:
+    """The speed chart as a stand-alone page: every view in the page, its selector run
+    in the browser."""
+    from bokeh.io import save
+    from bokeh.layouts import column
+    from bokeh.resources import INLINE
+
+    data = speed_accuracy_data(rows)
+    shown = speed_accuracy_chart(data, width=1100)
+    select = Select(title="View (time: median over the cases shown; error: worst)",
+                    value=data.keys[0], options=data.keys, width=700)
+    select.js_on_change("value", CustomJS(
+        args=dict(views=data.views, stars=data.closed_form, star=shown.closed_form,
+                  sources={k: list(v) for k, v in shown.sources.items()},
+                  empty=EMPTY),
+        code="""
+const v = views[this.value];
+for (const [name, [every, front]] of Object.entries(sources)) {
+  every.data = v[name] ? v[name].all : empty;
+  front.data = v[name] ? v[name].front : empty;
+}
+star.data = stars[this.value];
+"""))
+    intro = Div(width=1100, text=(
+        "<p>One contact from (psi, tau0): T on the method's own times and the impulse ratio. "
+        "Peers are numba kernels called from Python (compile time excluded); the closed "
+        "form is <code>core.curve</code> (one compiled call: T and b on 200 points, impulse "
+        "ratio). Same timing for all: the best of several windows of a few ms each "
+        "(<code>benchmarks/core/methods.py</code>). "
+        "Lines: each method's Pareto front (no faster run of it is more accurate); faint "
+        "markers: every run. Errors against core (the closed form's own error against "
+        "mpmath is the star). Click a legend entry to hide a method.</p>"))
+    save(column(intro, select, shown.peers, shown.checks), filename=str(path),
+         resources=INLINE, title="Speed against accuracy, like for like")
+
+
+def stability_page(rows: list[dict], path: Path) -> None:
+    """The maps, one per method, as a stand-alone page; the quantity's selector runs in
+    the browser."""
+    from bokeh.io import save
+    from bokeh.layouts import column, gridplot
+    from bokeh.resources import INLINE
+
+    data = stability_data(rows)
+    mapper = error_mapper(data)
+    figs, sources = [], []
+    for name in data.methods:
+        fig, src = stability_figure(data, name, mapper, width=470, height=400,
+                                    toolbar_location=None)
+        figs.append(fig)
+        sources.append(src)
+    bar = figure(width=470, height=340, toolbar_location=None, min_border=0,
+                 outline_line_color=None, title="colour scale")
+    bar.add_layout(colour_bar(mapper), "left")
+    bar.axis.visible = False
+    bar.grid.visible = False
+    figs.append(bar)
+    select = Select(title="Quantity", value=next(iter(STABILITY_FIELDS)),
+                    options=list(STABILITY_FIELDS), width=500)
+    select.js_on_change("value", CustomJS(
+        args=dict(sources=sources, fields=STABILITY_FIELDS), code="""
+const col = fields[this.value];
+for (const src of sources) {
+  src.data = Object.assign({}, src.data, {shown: src.data[col]});
+}
+"""))
+    intro = Div(text=f"<p>{STABILITY_NOTE.format(high=data.high)}</p>", width=1300)
+    save(column(intro, select, gridplot(figs, ncols=3)), filename=str(path),
+         resources=INLINE, title="Stability map of the numerical methods")
+
+
+PAGES = {"speed_accuracy.csv": speed_accuracy_page, "stability_map.csv": stability_page}
+
+
+def main(argv: list[str] | None = None) -> None:
+    """`python -m app.benchmark_charts DIR [--publish]`: the HTML page of each results
+    file in DIR, written beside it; with --publish the files are copied to `RESULTS`."""
+    parser = argparse.ArgumentParser(description=main.__doc__)
+    parser.add_argument("folder", type=Path, help="where the benchmarks wrote their CSV "
+                        "files (benchmarks/results)")
+    parser.add_argument("--publish", action="store_true",
+                        help="copy the files to the app's package data (app/results/)")
+    args = parser.parse_args(argv)
+    for name, page in PAGES.items():
+        path = args.folder / name
+        page(read_rows(path), path.with_suffix(".html"))
+        print(f"wrote {path.with_suffix('.html')}")
+        if args.publish:
+            with resources.as_file(RESULTS / name) as target:
+                shutil.copyfile(path, target)
+            print(f"copied {path} to {target}")
+
+
+if __name__ == "__main__":
+    main()

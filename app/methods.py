@@ -9,7 +9,7 @@ method may take a few hundred ms), with a progress bar, so sliders never wait fo
 Work is bounded: a session has at most one request waiting (a newer one replaces it),
 at most `MAX_QUEUED` requests wait in the whole process (beyond that the scene says the
 server is busy), and a session's requests are dropped when it ends.  The speed-accuracy
-chart and the stability map come from `benchmarks/results/*.csv`, read once per process.
+chart and the stability map come from the app's `results/*.csv`, read once per process.
 If `core.numerics` (or a method) is missing the scene shows a note instead.
 """
 
@@ -19,7 +19,6 @@ import io
 import threading
 from concurrent.futures import Future, ThreadPoolExecutor
 from functools import cache, partial
-from pathlib import Path
 
 import numpy as np
 import panel as pn
@@ -27,6 +26,7 @@ from bokeh.models import ColumnDataSource
 from panel.io import hold
 
 from app.benchmark_charts import (
+    RESULTS,
     STABILITY_FIELDS,
     STABILITY_NOTE,
     STYLE,
@@ -50,7 +50,6 @@ try:
 except ImportError:  # the app works without the numerics package
     numerics = None
 
-RESULTS = Path(__file__).resolve().parent.parent / "benchmarks" / "results"
 DEFAULT_METHODS = ("mdr", "lammps_mindlin")
 #: The colour of a method the charts have no style for.
 OTHER_COLOR = "#882255"
@@ -107,18 +106,18 @@ def available_methods() -> dict[str, str]:
 def speed_accuracy() -> SpeedAccuracyData | None:
     """The views of speed_accuracy.csv, once per process (None if the file is absent)."""
     path = RESULTS / "speed_accuracy.csv"
-    return speed_accuracy_data(read_rows(path)) if path.exists() else None
+    return speed_accuracy_data(read_rows(path)) if path.is_file() else None
 
 
 @cache
 def stability() -> StabilityData | None:
     """The cells of stability_map.csv, once per process (None if the file is absent)."""
     path = RESULTS / "stability_map.csv"
-    return stability_data(read_rows(path)) if path.exists() else None
+    return stability_data(read_rows(path)) if path.is_file() else None
 
 
 def results_download(name: str, label: str) -> pn.widgets.FileDownload:
-    """A button that downloads benchmarks/results/`name` (read when clicked)."""
+    """A button that downloads the results file `name` (read when clicked)."""
     return pn.widgets.FileDownload(callback=lambda: io.BytesIO((RESULTS / name).read_bytes()),
                                    filename=name, label=label, width=260)
 
@@ -360,4 +359,4 @@ class MethodsScene:
                         f"**{k}**: {v}" for k, v in self.methods.items()))]
         charts = self.speed_accuracy_chart() + self.stability_map()
         return body + (charts or [pn.pane.Markdown(
-            "_No benchmark results in benchmarks/results._")])
+            "_No benchmark results in app/results._")])

@@ -11,7 +11,6 @@ import io
 import math
 import re
 import xml.etree.ElementTree as ET
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -977,11 +976,12 @@ def test_the_view_is_chosen_by_the_url_and_kept_in_it() -> None:
 
 
 def results_rows(name: str) -> list[dict]:
-    """benchmarks/results/`name` read with the csv module alone (numbers as floats)."""
+    """The app's results file `name` read with the csv module alone (numbers as floats)."""
     import csv
 
-    with (Path(__file__).resolve().parents[2] / "benchmarks" / "results" / name).open(
-            newline="") as fh:
+    from app.benchmark_charts import RESULTS
+
+    with (RESULTS / name).open(newline="") as fh:
         rows = list(csv.DictReader(fh))
     for r in rows:
         for k, v in r.items():

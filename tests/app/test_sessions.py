@@ -119,11 +119,11 @@ def test_sessions_leave_nothing_behind(served) -> None:
 
 
 def test_slider_moves_in_one_session_hold_no_more_python_memory(served) -> None:
-    """A thousand psi moves over Bokeh's protocol (benchmarks/load_test.py's client) leave
+    """A thousand psi moves over Bokeh's protocol (benchmarks/app/load_test.py's client) leave
     the Python heap where it was: tracemalloc sees no growth beyond a few arrays' worth
     (what the server's RSS adds over a long soak is the allocator's, see docs/deploy.md)."""
     url, _ = served
-    sys.path.insert(0, str(ROOT / "benchmarks"))
+    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
     from load_test import Session
 
     async def moves() -> int:
@@ -149,12 +149,12 @@ def test_slider_moves_in_one_session_hold_no_more_python_memory(served) -> None:
 
 
 def test_a_slider_move_comes_back_as_one_message(served) -> None:
-    """A psi move from a loaded page (benchmarks/load_test.py's client sends
+    """A psi move from a loaded page (benchmarks/app/load_test.py's client sends
     `document_ready`, as BokehJS does) comes back as ONE message holding both the psi
     box's new text and the plots' new data (app/widgets.py applies the browser's value
     under `hold`): Bokeh builds each message's serializer over the whole document."""
     url, _ = served
-    sys.path.insert(0, str(ROOT / "benchmarks"))
+    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
     from load_test import Session
 
     async def move() -> list[str]:
@@ -189,7 +189,7 @@ def test_a_session_built_for_its_websocket_alone_has_the_servers_stylesheets(ser
     server's own copies: Panel's CDN is refused by the page's Content-Security-Policy
     (the page showed unstyled, 233 refusals in the console) and out of reach offline."""
     url, _ = served
-    sys.path.insert(0, str(ROOT / "benchmarks"))
+    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
     from bokeh.util.token import generate_jwt_token, generate_session_id
     from load_test import Session
 

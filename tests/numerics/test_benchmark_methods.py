@@ -1,4 +1,4 @@
-"""benchmarks/methods.py's many-contacts-a-call timing: every method's kernel runs once
+"""benchmarks/core/methods.py's many-contacts-a-call timing: every method's kernel runs once
 per contact, with the arguments of the single call, and the count follows one rule."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks" / "core"))
 import methods
 
 RUNS = [("closed_form", 200, None), ("closed_form", 10, None), ("mdr", 12, 8),

@@ -4,7 +4,7 @@ The columns a psi move sends that are float curves (T(τ) with its bounds on the
 contact's grid, and the traction profile), encoded as `app.wire.InlineColumn` does:
 base64 of a gzip stream, at gzip levels 0 (stored), 1, 2 (Bokeh's default) and 6.
 
-    .venv/bin/python benchmarks/wire_cost.py
+    .venv/bin/python benchmarks/app/wire_cost.py
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
 from app.scenes import CURVE_POINTS, TractionScene
 from core import Contact

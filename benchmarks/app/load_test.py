@@ -29,11 +29,11 @@ Bounded: at most ``--max-sessions`` (200) sessions, every level ends after its
 duration, every wait has a timeout, and the target must be a loopback address.
 
     # a server started here (python -m app.serve, 2 processes = one per core):
-    python benchmarks/load_test.py --serve 2
+    python benchmarks/app/load_test.py --serve 2
     # any running server or balancer on this machine, its processes found by port:
-    python benchmarks/load_test.py --url http://127.0.0.1:8080/main --pids 1234,1240
+    python benchmarks/app/load_test.py --url http://127.0.0.1:8080/main --pids 1234,1240
     # two replicas behind nginx (docker/replicas.py), everything started and stopped here:
-    python benchmarks/load_test.py --replicas 2
+    python benchmarks/app/load_test.py --replicas 2
 
 Results: a table on stdout, and ``--json FILE`` for the raw figures.
 """
@@ -60,7 +60,7 @@ from urllib.parse import urlsplit
 from tornado.httpclient import AsyncHTTPClient, HTTPRequest
 from tornado.websocket import WebSocketClosedError, websocket_connect
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests" / "app"))
 
 from explorer_browser import free_port  # noqa: E402

@@ -15,7 +15,7 @@ resident memory (RSS) of that process:
     session against the target (within 0.5 MB per session of the baseline).
 (b) **one long session**: ``--changes`` ψ moves in ONE session, each sent when the
     previous one's plot update has arrived, speaking Bokeh's websocket protocol with
-    ``benchmarks/load_test.py``'s ``Session`` (imported, not copied).  The server's RSS
+    ``benchmarks/app/load_test.py``'s ``Session`` (imported, not copied).  The server's RSS
     is sampled every ``--every`` changes; a least-squares line through the samples gives
     the trend per 1000 changes with its 95 % confidence interval, over the whole run and
     over its second half (what remains once caches are warm).  The trend counts as beyond
@@ -28,10 +28,10 @@ takes 60-90 ms from change to update on the shared 2-core machine, so the defaul
 counts take about 4-5 minutes for (a) and 12-15 minutes for (b); ``--changes 2000``
 gives a 3-minute look at (b).
 
-    .venv/bin/python benchmarks/soak.py                       # both parts, default counts
-    .venv/bin/python benchmarks/soak.py --loads 50 --changes 2000 --json soak.json
-    .venv/bin/python benchmarks/soak.py --skip-loads          # only the long session
-    .venv/bin/python benchmarks/soak.py --skip-changes --malloc-trim   # see below
+    .venv/bin/python benchmarks/app/soak.py                       # both parts, default counts
+    .venv/bin/python benchmarks/app/soak.py --loads 50 --changes 2000 --json soak.json
+    .venv/bin/python benchmarks/app/soak.py --skip-loads          # only the long session
+    .venv/bin/python benchmarks/app/soak.py --skip-changes --malloc-trim   # see below
 
 ``--malloc-trim`` starts the server with glibc's ``malloc_trim(0)`` run every 5 s on
 its event loop (a ``python -c`` wrapper around ``app.serve.main``): RSS that falls back
@@ -53,8 +53,8 @@ import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [str(ROOT), str(ROOT / "benchmarks")]
+ROOT = Path(__file__).resolve().parents[2]
+sys.path[:0] = [str(ROOT), str(ROOT / "benchmarks" / "app")]
 
 from load_test import (  # noqa: E402
     Session,
@@ -86,7 +86,7 @@ TARGET_MB_PER_SESSION = 0.5
 
 def yardstick() -> float:
     """Microseconds for one closed-form contact (psi = 0.4, tau0 = pi/6), best of 5:
-    the machine's speed at the time (as in benchmarks/app_latency.py)."""
+    the machine's speed at the time (as in benchmarks/app/app_latency.py)."""
     from core import Contact
     from core.numerics.metrics import closed_form_time
 

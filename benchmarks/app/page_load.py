@@ -7,7 +7,7 @@ each from the request sent to the last byte of the page received: the server cre
 the session, building its document and rendering the page.  Reported: median, min,
 p90 and max in ms, the server process's CPU time per load, and the median as a multiple
 of one closed-form contact (``core.numerics.metrics.closed_form_time(Contact, 0.4,
-pi/6)``, the machine yardstick of benchmarks/app_latency.py, measured before and after
+pi/6)``, the machine yardstick of benchmarks/app/app_latency.py, measured before and after
 the run).  Target: median <= 0.5 s.
 
 ``--profile FILE`` then records the server with py-spy (``.venv/bin/py-spy``) during
@@ -15,8 +15,8 @@ another ``--loads`` GETs (collapsed stacks in FILE) and prints where the time go
 the functions of app/, Panel, Bokeh and param holding the most samples (inclusive) and
 the most samples on their own (self).  The timing run is not profiled.
 
-    .venv/bin/python benchmarks/page_load.py
-    .venv/bin/python benchmarks/page_load.py --loads 20 --profile /tmp/page.txt --json out.json
+    .venv/bin/python benchmarks/app/page_load.py
+    .venv/bin/python benchmarks/app/page_load.py --loads 20 --profile /tmp/page.txt --json out.json
 
 ``--gc PAGES`` instead builds PAGES sessions' pages in this process, keeping them as
 the server keeps its sessions, and prints the models of each page's document, the time
@@ -46,8 +46,8 @@ from collections import Counter
 from pathlib import Path
 from urllib.request import urlopen
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [str(ROOT), str(ROOT / "benchmarks")]
+ROOT = Path(__file__).resolve().parents[2]
+sys.path[:0] = [str(ROOT), str(ROOT / "benchmarks" / "app")]
 
 from load_test import loopback_only, serve, stop  # noqa: E402
 from soak import yardstick  # noqa: E402

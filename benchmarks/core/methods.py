@@ -28,9 +28,10 @@ runs it, the same count rule for every method) and reported per contact as well.
 Cases: psi in {0.4, 1, 2.414, 28.35, 1000} x tau0 in {pi/6, 1.5, -0.9}, in four regimes:
 "psi <= 1" and "psi > 1" (tau0 = pi/6), "grazing" (tau0 = 1.5), "preload" (tau0 = -0.9).
 
-Outputs (benchmarks/results/, or results/quick/ with --quick):
-  speed_accuracy.csv    one row per run (method, resolution, steps, case, time, errors)
-  speed_accuracy.html   Bokeh chart: per regime or case, time against error, Pareto fronts
+Outputs (benchmarks/results/, or results/quick/ with --quick), data only:
+  speed_accuracy.csv    one row per run (method, resolution, steps, case, time, errors);
+                        its chart (speed_accuracy.html, per regime or case, time against
+                        error, Pareto fronts) is the app's: ``make bench-charts``
   head_to_head.csv      per case, error kind and target: the fastest peer, the closed form
                         on 200 points and on as many points as the peer, timed interleaved,
                         one contact a call and (*_batch, per contact) many a call
@@ -38,7 +39,7 @@ Outputs (benchmarks/results/, or results/quick/ with --quick):
   methods_table.md      per case and per regime: fastest peer reaching each error target
   compile_times.json    cold compile and cached first-call time of each kernel
 
-Usage: .venv/bin/python benchmarks/methods.py [--quick] [--replot]
+Usage: .venv/bin/python benchmarks/core/methods.py [--quick] [--replot]
 """
 
 from __future__ import annotations
@@ -54,9 +55,8 @@ from collections.abc import Callable
 from functools import partial
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-sys.path.insert(0, str(ROOT / "benchmarks"))
+ROOT = Path(__file__).resolve().parents[2]
+sys.path[:0] = [str(ROOT), str(Path(__file__).resolve().parent)]
 
 import mpmath as mp  # noqa: E402
 import numpy as np  # noqa: E402
@@ -64,19 +64,22 @@ from numba import njit  # noqa: E402
 from results_csv import read_csv, write_csv  # noqa: E402
 from tqdm import tqdm  # noqa: E402
 
-from app.benchmark_charts import (  # noqa: E402
-    CHECKS,
-    EMPTY,
-    PEERS,
-    REGIMES,
-    label,
-    speed_accuracy_chart,
-    speed_accuracy_data,
-)
 from core import Contact, curve, kernels  # noqa: E402
-from core.numerics import MethodResult, Params, annulus, dem, mdr, quadrature  # noqa: E402
+from core.numerics import (  # noqa: E402
+    METHODS,
+    MethodResult,
+    Params,
+    annulus,
+    dem,
+    mdr,
+    quadrature,
+)
 from core.numerics.metrics import errors  # noqa: E402
 
+#: Quadrature of core's T: a check of eq 41 (it needs the closed form), not a peer.
+CHECKS = ("quad", "gauss_legendre")
+PEERS = tuple(m for m in METHODS if m not in CHECKS)
+REGIMES = ("psi <= 1", "psi > 1", "grazing", "preload")
 PSIS = [0.4, 1.0, 2.414, 28.35, 1000.0]
 TAU0S = [np.pi / 6, 1.5, -0.9]
 THRESHOLDS = [1e-2, 1e-4, 1e-6, 1e-9]
@@ -102,6 +105,13 @@ FIELDS = ["method", "resolution", "steps", "psi", "tau0", "regime", "points", "w
 HEAD_FIELDS = ["psi", "tau0", "regime", "kind", "threshold", "peer", "peer_points",
                "peer_time", "cf_time", "cf_n", "cf_points", "cf_n_time", "peer_batch",
                "cf_batch", "cf_n_batch"]
+
+
+def label(r: dict) -> str:
+    """A run's name: method and resolution (and MDR's time steps)."""
+    if r["method"] == "mdr":
+        return f"mdr N={r['resolution']} M={r['steps']}"
+    return f"{r['method']} {r['resolution']}"
 
 
 def regime(psi: float, tau0: float) -> str:
@@ -649,52 +659,12 @@ def markdown(rows: list[dict], head: list[dict], compile_info: dict | None,
     return "\n".join(lines) + "\n"
 
 
-# ------------------------------------------------------------------ the chart
-
-
-def chart(rows: list[dict], path: Path) -> None:
-    """The chart of ``app.benchmark_charts`` as a stand-alone page: every view in the
-    page, its selector run in the browser."""
-    from bokeh.io import save
-    from bokeh.layouts import column
-    from bokeh.models import CustomJS, Div, Select
-    from bokeh.resources import INLINE
-
-    data = speed_accuracy_data(rows)
-    shown = speed_accuracy_chart(data, width=1100)
-    select = Select(title="View (time: median over the cases shown; error: worst)",
-                    value=data.keys[0], options=data.keys, width=700)
-    select.js_on_change("value", CustomJS(
-        args=dict(views=data.views, stars=data.closed_form, star=shown.closed_form,
-                  sources={k: list(v) for k, v in shown.sources.items()},
-                  empty=EMPTY),
-        code="""
-const v = views[this.value];
-for (const [name, [every, front]] of Object.entries(sources)) {
-  every.data = v[name] ? v[name].all : empty;
-  front.data = v[name] ? v[name].front : empty;
-}
-star.data = stars[this.value];
-"""))
-    intro = Div(width=1100, text=(
-        "<p>One contact from (psi, tau0): T on the method's own times and the impulse ratio. "
-        "Peers are numba kernels called from Python (compile time excluded); the closed "
-        "form is <code>core.curve</code> (one compiled call: T and b on 200 points, impulse "
-        "ratio). "
-        f"Same timing for all: best of {REPEATS} windows of at least {WINDOW * 1e3:g} ms. "
-        "Lines: each method's Pareto front (no faster run of it is more accurate); faint "
-        "markers: every run. Errors against core (the closed form's own error against "
-        "mpmath is the star). Click a legend entry to hide a method.</p>"))
-    save(column(intro, select, shown.peers, shown.checks), filename=str(path),
-         resources=INLINE, title="Speed against accuracy, like for like")
-
-
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true",
                         help="every third rung of each ladder, output in results/quick/")
     parser.add_argument("--replot", action="store_true",
-                        help="rebuild the chart and tables from the existing CSV")
+                        help="rebuild the tables from the existing CSV")
     parser.add_argument("--compile-times", action="store_true",
                         help="measure the compile times again, then replot")
     args = parser.parse_args(argv)
@@ -725,7 +695,6 @@ def main(argv: list[str] | None = None) -> None:
         (out / "call_floors.json").write_text(json.dumps(floors, indent=1) + "\n")
     text = markdown(rows, head, compile_info, floors)
     (out / "methods_table.md").write_text(text)
-    chart(rows, out / "speed_accuracy.html")
     print(text)
     print(f"wrote {out}")
 

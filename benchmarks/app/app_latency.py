@@ -9,7 +9,7 @@ Measures
       playing.
 Serves the app itself with `python -m app.serve` unless EXPLORER_URL is set.
 
-    .venv/bin/python benchmarks/app_latency.py [--moves 30] [--seconds 5]
+    .venv/bin/python benchmarks/app/app_latency.py [--moves 30] [--seconds 5]
                                                [--width 1600] [--height 1400]
                                                [--runs 1] [--revs REV [REV ...]]
 
@@ -33,7 +33,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 sys.path[:0] = [str(ROOT), str(ROOT / "tests" / "app")]
 
 from explorer_browser import (  # noqa: E402
