@@ -10,23 +10,29 @@ contact, and (``core.numerics``) independent numerical methods for the same prob
 from core import batch
 from core.contact import Contact, curve, impulse_ratio
 from core.coulomb import CoulombReport, coulomb_certificate
-from core.physical import MATERIALS, PhysicalInputs, Scales
+from core.materials import PRESETS, Material
+from core.physical import MATERIALS, PhysicalInputs, Scales, dundurs_beta, equivalent_pair
 from core.tangential import PHASE_NAMES, Phase
-from core.validation import DOMAIN, PSI_MAX, Interval
+from core.validation import DOMAIN, MOTOR_DOMAIN, PSI_MAX, Interval
 
 __all__ = [
     "DOMAIN",
     "MATERIALS",
+    "MOTOR_DOMAIN",
     "PHASE_NAMES",
+    "PRESETS",
     "PSI_MAX",
     "Contact",
     "CoulombReport",
     "Interval",
+    "Material",
     "Phase",
     "PhysicalInputs",
     "Scales",
     "batch",
     "coulomb_certificate",
     "curve",
+    "dundurs_beta",
+    "equivalent_pair",
     "impulse_ratio",
 ]

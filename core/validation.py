@@ -142,6 +142,56 @@ DOMAIN: dict[str, Interval] = {
 }
 
 
+#: Smallest load factor Phi = F(tau0) at the rod's centre (``core.motor.balance``): below
+#: it the contact only grazes (tau0 within 1.2e-6 of pi/2 at Phi = 1e-24, and rounding to
+#: pi/2 below ~1e-62, where the balance cannot be solved).
+PHI_MIN = 1e-24
+#: Fewest and most springs and time steps of one MDR contact, their largest product
+#: (about 0.25 s of work), and the largest work of one call (speeds x springs x steps).
+MDR_WORK_MAX = 10**8
+CALL_WORK_MAX = 10**9
+
+#: The allowed range of every parameter of ``core.motor`` (SI: m, Hz, N, kg, Pa), beside
+#: ``DOMAIN`` (which holds R, G, nu, mu of the rotor and of the rod's contact point:
+#: rod_R, rod_G, rod_nu take the rows R, G, nu, and rod_R also inf, a flat face). Lengths
+#: from a micrometre rod to a 100 m one, amplitudes up to 10 cm, frequencies 1 mHz to
+#: 1 GHz, preloads and loads up to 1 MN: every drive amplitude, psi and Phi is then finite
+#: (tests/core/test_motor_fuzz.py). Rod and Motor also check one joint condition: Phi at
+#: the rod's centre (its smallest value) is at least PHI_MIN, so that the preload balance
+#: has a root inside core's tau0 range wherever the contact opens. The resolution rows
+#: (springs, steps, n: integers) and xtol are those of the moving rotor
+#: (``core.motor.moving_rotor``); v is its dimensionless speed V / (omega u0), and
+#: psi_moving the smallest psi it takes (its full-slip speed (1 + 1/psi) cos tau0 must lie
+#: in v's range). load_ratio is a load over the largest thrust mu N; wear_coefficient is
+#: Archard's k (dimensionless) and hardness the softer body's (Pa).
+MOTOR_DOMAIN: dict[str, Interval] = {
+    "half_length": Interval(1e-6, 1e2),
+    "thickness": Interval(1e-9, 1e2),
+    "nu_rod": DOMAIN["nu"],
+    "amplitude": Interval(1e-12, 1e-1),
+    "frequency": Interval(1e-3, 1e9),
+    "preload": Interval(1e-12, 1e6),
+    "load_factor": Interval(PHI_MIN, None),
+    "load": Interval(0.0, 1e6),
+    "load_ratio": Interval(0.0, 1.0),
+    "mass": Interval(1e-9, 1e6),
+    "wear_coefficient": Interval(0.0, 1.0),
+    "hardness": Interval(1e3, 1e12),
+    "springs": Interval(2, 10**6),
+    "steps": Interval(4, 10**7),
+    "n": Interval(2, 10**4),
+    "xtol": Interval(1e-12, 1e-2),
+    "v": Interval(0.0, 1e6),
+    "psi_moving": Interval(1e-5, PSI_MAX),
+    "periods": Interval(1.0, 1e9),
+}
+
+
+def is_flat(value: object) -> bool:
+    """value is the float +inf: a radius of a flat face (rod_R, R2)."""
+    return isinstance(value, float | np.floating) and value == math.inf
+
+
 def check_param(name: str, value: object) -> float:
     """value as a float if it is inside ``DOMAIN[name]``; ValueError (see
     ``Interval.check``) otherwise."""

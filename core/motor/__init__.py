@@ -10,6 +10,12 @@ One concept per module:
 - ``thrust``: the stall thrust mu N T_imp / (mu P_imp) (eq 41) with its sign.
 - ``motor``: ``Motor`` (rod + rotor + preload), vectorised over x0; ``MotorProfile``.
 
+- ``load``: the operating point under a load force and the start-up from rest
+  (``operating_point``, ``operating_speed``, ``start_up``).
+- ``wear``: Archard wear from the exact friction dissipation, per contact
+  (``wear_depth``), along the rod (``wear_along_rod``) and for a moving rotor
+  (``moving_wear_rate``).
+
 - ``moving_rotor``: the rotor turning at a steady surface speed V (section 10.4): thrust
   ratio, input and output power, friction loss and efficiency per contact (psi, tau0),
   by the method of dimensionality reduction (``core.numerics.mdr``) under the drive
@@ -25,6 +31,7 @@ One concept per module:
 """
 
 from core.motor.balance import PHI_MAX
+from core.motor.load import OperatingPoint, StartUp, operating_point, operating_speed, start_up
 from core.motor.motor import Motor, MotorProfile
 from core.motor.moving_rotor import (
     BestEfficiency,
@@ -36,6 +43,7 @@ from core.motor.moving_rotor import (
     thrust_speed_curve,
 )
 from core.motor.rod import Rod
+from core.motor.wear import WearProfile, moving_wear_rate, wear_along_rod, wear_depth
 
 __all__ = [
     "PHI_MAX",
@@ -43,10 +51,19 @@ __all__ = [
     "Motor",
     "MotorProfile",
     "MovingRotor",
+    "OperatingPoint",
     "Rod",
+    "StartUp",
+    "WearProfile",
     "best_efficiency",
     "full_slip_speed",
     "moving_rotor",
+    "moving_wear_rate",
     "no_load_speed",
+    "operating_point",
+    "operating_speed",
+    "start_up",
     "thrust_speed_curve",
+    "wear_along_rod",
+    "wear_depth",
 ]

@@ -21,7 +21,8 @@ from numpy.typing import ArrayLike, NDArray
 from core.contact import Contact
 from core.motor import balance, thrust
 from core.motor.rod import POSITIVE, Rod
-from core.validation import check_param
+from core.physical import beta_warning, dundurs_beta, equivalent_pair
+from core.validation import DOMAIN, MOTOR_DOMAIN, PHI_MIN, check_param, is_flat, shown
 
 
 @dataclass(frozen=True)
@@ -32,7 +33,8 @@ class MotorProfile:
     (rad), impulse_ratio (T_imp / (mu P_imp), eq 41, in [0, 1]) and thrust_ratio (the
     signed stall thrust over mu N, in [-1, 1]). ``opens`` is False where the contact never
     opens (Phi >= 8): the model does not apply there and every quantity that depends on
-    tau0 is nan."""
+    tau0 is nan. ``beta`` is Dundurs' constant of the rotor and the rod (0-d; 0 for the
+    paper's identical bodies)."""
 
     x0: NDArray[np.float64]
     u0: NDArray[np.float64]
@@ -47,6 +49,7 @@ class MotorProfile:
     impulse_ratio: NDArray[np.float64]
     thrust_ratio: NDArray[np.float64]
     stall_thrust: NDArray[np.float64]
+    beta: float = 0.0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -57,14 +60,23 @@ class MotorProfile:
 
 @dataclass(frozen=True)
 class Motor:
-    """A rotor on the rod of Fig. 1, modelled as the paper does: both contacting bodies
-    identical spheres of radius R (m), shear modulus G (Pa), Poisson ratio nu and friction
-    coefficient mu, pressed together by a steady ``preload`` N (newtons: the rotor's
-    weight, or a spring).
+    """A rotor on the rod of Fig. 1, pressed on it by a steady ``preload`` N (newtons: the
+    rotor's weight, or a spring). The rotor's contact is a sphere of radius R (m), shear
+    modulus G (Pa) and Poisson ratio nu; mu is the friction coefficient of the pair. The
+    rod's contact point is, as in the paper, an identical sphere (rod_R, rod_G, rod_nu
+    None), or a body of its own: rod_G (Pa), rod_nu, and rod_R (m; ``math.inf`` for the
+    flat face of the rod), each None taking the rotor's value. Dissimilar bodies enter
+    under Goodman's approximation, through the equivalent identical pair
+    (``core.physical.equivalent_pair``; docs/physics.md, section 11.1): psi, Phi, tau0 and
+    the thrust use its constants (``equivalent``); ``beta`` measures what it neglects.
 
-    Validated: ``rod`` a ``Rod``; R, G, nu, mu in core's domain (``core.validation.DOMAIN``,
-    the same as ``Contact.from_physical``); preload > 0. Every method takes x0 (m) as a
-    scalar or array with |x0| < L and returns arrays of its shape.
+    Validated (ValueError naming the parameter, its value and the range): ``rod`` a
+    ``Rod``; R, G, nu, mu and rod_R, rod_G, rod_nu in core's domain
+    (``core.validation.DOMAIN``, as ``Contact.from_physical``; rod_R also inf); preload
+    > 0 and in ``MOTOR_DOMAIN["preload"]``; and jointly, Phi at the rod's centre at least
+    ``PHI_MIN`` (else the contact would only graze and the balance has no root in
+    core's tau0 range). Every method takes x0 (m) as a scalar or array with |x0| < L and
+    returns arrays of its shape.
     """
 
     rod: Rod
@@ -73,18 +85,55 @@ class Motor:
     nu: float
     mu: float
     preload: float
+    rod_G: float | None = None
+    rod_nu: float | None = None
+    rod_R: float | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.rod, Rod):
             raise ValueError(f"rod must be a core.motor.Rod, got {self.rod!r}")
         for name in ("R", "G", "nu", "mu"):
             object.__setattr__(self, name, check_param(name, getattr(self, name)))
-        object.__setattr__(self, "preload", POSITIVE.check("preload", self.preload))
+        preload = POSITIVE.check("preload", self.preload)
+        object.__setattr__(self, "preload", MOTOR_DOMAIN["preload"].check("preload", preload))
+        for name, row in (("rod_G", "G"), ("rod_nu", "nu"), ("rod_R", "R")):
+            value = getattr(self, name)
+            if value is not None:
+                flat = name == "rod_R" and is_flat(value)
+                object.__setattr__(self, name,
+                                   math.inf if flat else DOMAIN[row].check(name, value))
+        centre = float(self._load_factor(np.array(abs(self.rod.vertical_amplitude))))
+        if not centre >= PHI_MIN:
+            raise ValueError(
+                f"preload = {shown(self.preload)} N is too small for this rod and rotor: "
+                f"Phi = {shown(centre)} at the rod's centre is below {PHI_MIN:g} "
+                "(the contact would only graze, tau0 -> pi/2): raise the preload, or "
+                "lower the rod's amplitude or thickness")
+
+    @property
+    def equivalent(self) -> tuple[float, float, float]:
+        """(R_eq, G_eq, nu_eq): the identical spheres equivalent to rotor and rod under
+        Goodman's approximation (m, Pa, 1); (R, G, nu) for the paper's identical bodies."""
+        return equivalent_pair(self.R, self.G, self.nu, self.rod_R, self.rod_G, self.rod_nu)
+
+    @property
+    def beta(self) -> float:
+        """Dundurs' beta of rotor (body 1) and rod (body 2); 0 for identical bodies."""
+        G2 = self.G if self.rod_G is None else self.rod_G
+        nu2 = self.nu if self.rod_nu is None else self.rod_nu
+        return dundurs_beta(self.G, self.nu, G2, nu2)
+
+    @property
+    def beta_warning(self) -> str | None:
+        """A warning for users when |beta| exceeds ``core.physical.BETA_WARN``."""
+        return beta_warning(self.beta)
 
     @property
     def tan_theta0(self) -> float:
-        """tan theta0 = mu (2 - nu) / (2 (1 - nu)) (eq 23): psi = tan theta / tan theta0."""
-        return self.mu * (2.0 - self.nu) / (2.0 * (1.0 - self.nu))
+        """tan theta0 = mu (2 - nu) / (2 (1 - nu)) (eq 23), nu the equivalent nu_eq:
+        psi = tan theta / tan theta0."""
+        nu = self.equivalent[2]
+        return self.mu * (2.0 - nu) / (2.0 * (1.0 - nu))
 
     @property
     def theta0(self) -> float:
@@ -142,6 +191,7 @@ class Motor:
             opens=phi < balance.PHI_MAX, m0=m0, tau0=balance.tau0_of(m0, mc0),
             h=H * (mc0 - m0), impulse_ratio=ratio,
             thrust_ratio=force / (self.mu * self.preload), stall_thrust=force,
+            beta=self.beta,
         )
 
     def contact(self, x0: float) -> Contact:
@@ -162,13 +212,15 @@ class Motor:
             )
         return Contact.from_physical(
             R=self.R, G=self.G, nu=self.nu, mu=self.mu, H=float(p.H), u0=abs(float(p.u0)),
-            h=float(p.h), omega=self.rod.omega,
+            h=float(p.h), omega=self.rod.omega, R2=self.rod_R, G2=self.rod_G, nu2=self.rod_nu,
         )
 
     # ---- helpers -------------------------------------------------------------------
     def _psi(self, u0: NDArray[np.float64], H: NDArray[np.float64]) -> NDArray[np.float64]:
+        tan_theta0 = self.tan_theta0
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            return np.abs(u0) / H / self.tan_theta0
+            return np.abs(u0) / H / tan_theta0
 
     def _load_factor(self, H: NDArray[np.float64]) -> NDArray[np.float64]:
-        return balance.load_factor(self.preload, self.R, self.G, self.nu, H)
+        R, G, nu = self.equivalent
+        return balance.load_factor(self.preload, R, G, nu, H)

@@ -46,7 +46,15 @@ from scipy.optimize import brentq, minimize_scalar
 from core.numerics import mdr
 from core.numerics.loading import trapezoid
 from core.numerics.result import check_resolution
-from core.validation import PSI_MAX, Interval, check_param, shown
+from core.validation import (
+    CALL_WORK_MAX,
+    MDR_WORK_MAX,
+    MOTOR_DOMAIN,
+    PSI_MAX,
+    Interval,
+    check_param,
+    shown,
+)
 
 #: Largest dimensionless speed v = V / (omega u0) accepted. Beyond full counter-slip
 #: (``full_slip_speed``, at most 1 + 1 / psi) nothing changes but the scale.
@@ -137,11 +145,40 @@ def _check_speeds(v: ArrayLike) -> NDArray[np.float64]:
 
 
 def _check_contact(psi: object, tau0: object, mu: object, nu: object) -> tuple[float, float]:
+    """(psi, tau0) checked: psi in (0, 1e12] and at least MOTOR_DOMAIN["psi_moving"]
+    (1e-5: the full-slip speed must lie in v's range), tau0, mu, nu in core's domain."""
     psi_ = PSI.check("psi", psi)
+    low = MOTOR_DOMAIN["psi_moving"]
+    if not low.contains(psi_):
+        raise ValueError(f"psi = {shown(psi_)} is outside the moving rotor's range "
+                         f"{low.describe()}: its full-slip speed (1 + 1/psi) cos tau0 would "
+                         f"exceed the largest speed v = {V_MAX:g}")
     tau0_ = check_param("tau0", tau0)
     check_param("mu", mu)
     check_param("nu", nu)
     return psi_, tau0_
+
+
+def _count(name: str, value: object) -> int:
+    """An integer in its MOTOR_DOMAIN row (springs, steps, n); ValueError naming it."""
+    row = MOTOR_DOMAIN[name]
+    return check_resolution(value, minimum=int(row.lo), maximum=int(row.hi), name=name)
+
+
+def _resolution(springs: object, steps: object, calls: int = 1) -> tuple[int, int]:
+    """(springs, steps) checked against MOTOR_DOMAIN, with springs * steps <= MDR_WORK_MAX
+    and calls * springs * steps <= CALL_WORK_MAX (calls: contacts solved by one call)."""
+    n, m = _count("springs", springs), _count("steps", steps)
+    check_resolution(n * m, maximum=MDR_WORK_MAX, name="springs * steps")
+    if calls * n * m > CALL_WORK_MAX:
+        raise ValueError(f"speeds x springs x steps = {calls} x {n} x {m} is beyond the work "
+                         f"of one call, {CALL_WORK_MAX:.0e}: fewer speeds or a coarser MDR")
+    return n, m
+
+
+def _xtol(value: object) -> float:
+    """xtol in MOTOR_DOMAIN["xtol"]; ValueError naming it."""
+    return MOTOR_DOMAIN["xtol"].check("xtol", value)
 
 
 # ---- one contact ---------------------------------------------------------------------
@@ -158,7 +195,8 @@ def _one(psi: float, tau0: float, v: float, springs: int, steps: int
 def full_slip_speed(psi: float, tau0: float) -> float:
     """v above which the contact slides backwards at every point from the moment it
     touches: (1 + 1 / psi) cos(max(tau0, 0)) (docs/physics.md, section 10.4). There
-    r = -1, p_in = 0, p_loss = v exactly."""
+    r = -1, p_in = 0, p_loss = v exactly. psi in [1e-5, 1e12] (so that the result is at
+    most 1e5 + 1, inside v's range)."""
     psi, tau0 = _check_contact(psi, tau0, 0.2, 0.3)
     return (1.0 + 1.0 / psi) * math.cos(max(tau0, 0.0))
 
@@ -171,14 +209,13 @@ def moving_rotor(psi: float, tau0: float, v: ArrayLike, mu: float = 0.2, nu: flo
     steps per contact (the defaults converge r to 1e-4).
 
     Validated (ValueError naming the parameter, its value and the allowed range): psi in
-    (0, 1e12], tau0 in (-pi/2, pi/2), mu and nu in core's domain, every v, springs and
-    steps (integers in [2, 1e6] and [4, 1e7], springs * steps <= 1e9).
+    [1e-5, 1e12], tau0 in (-pi/2, pi/2), mu and nu in core's domain, every v, springs and
+    steps (integers in [2, 1e6] and [4, 1e7], springs * steps <= 1e8, and speeds x
+    springs x steps <= 1e9: ``core.validation.MOTOR_DOMAIN``).
     """
     psi, tau0 = _check_contact(psi, tau0, mu, nu)
     speeds = _check_speeds(v)
-    n = check_resolution(springs, maximum=10**6, name="springs")
-    m = check_resolution(steps, minimum=4, maximum=10**7, name="steps")
-    check_resolution(n * m, maximum=10**9, name="springs * steps")
+    n, m = _resolution(springs, steps, speeds.size)
     flat = speeds.reshape(-1)
     out = np.array([_one(psi, tau0, float(s), n, m) for s in flat]).reshape(-1, 3)
     r, p_in, loss = (out[:, i].reshape(speeds.shape) for i in range(3))
@@ -206,7 +243,8 @@ def thrust_speed_curve(psi: float, tau0: float, n: int = 40, v_max: float | None
     defaults to ``full_slip_speed`` (r = -1 there and beyond), so the curve passes the
     no-load speed (r = 0) and ends at full counter-slip."""
     psi, tau0 = _check_contact(psi, tau0, mu, nu)
-    count = check_resolution(n, maximum=10**5, name="n")
+    count = _count("n", n)
+    _resolution(springs, steps, count)
     top = full_slip_speed(psi, tau0) if v_max is None else SPEED.check("v_max", v_max)
     return moving_rotor(psi, tau0, np.linspace(0.0, top, count), mu, nu,
                         springs=springs, steps=steps)
@@ -216,8 +254,11 @@ def no_load_speed(psi: float, tau0: float, mu: float = 0.2, nu: float = 0.3, *,
                   springs: int = SPRINGS, steps: int = STEPS, xtol: float = 1e-9) -> float:
     """The speed v0 at which the thrust vanishes, r(v0) = 0 (brentq on the MDR's r,
     bracketed by 0 and ``full_slip_speed``, where r = -1). Its error is that of r
-    (1e-4 at the defaults) over the slope |dr/dv| there."""
+    (1e-4 at the defaults) over the slope |dr/dv| there. xtol in [1e-12, 1e-2]; springs
+    and steps as for ``moving_rotor``."""
     psi, tau0 = _check_contact(psi, tau0, mu, nu)
+    springs, steps = _resolution(springs, steps)
+    xtol = _xtol(xtol)
 
     def r(s: float) -> float:
         return _one(psi, tau0, s, springs, steps)[0]
@@ -244,8 +285,11 @@ def best_efficiency(psi: float, tau0: float, mu: float = 0.2, nu: float = 0.3, *
     (0, v0), v0 the no-load speed; the held rotor already slips (eta(0) = 0). psi <= 1:
     the contact sticks fully at v = 0 and the loss vanishes as v^2, so eta -> 1 as
     v -> 0+: the supremum is the stall limit, returned as v = 0, efficiency 1 and
-    r(0) = psi (eq 41), a point of no power."""
+    r(0) = psi (eq 41), a point of no power. xtol (in v) in [1e-12, 1e-2]; springs and
+    steps as for ``moving_rotor``."""
     psi, tau0 = _check_contact(psi, tau0, mu, nu)
+    springs, steps = _resolution(springs, steps)
+    xtol = _xtol(xtol)
     if psi <= 1.0:
         return BestEfficiency(v=0.0, efficiency=1.0,
                               thrust_ratio=_one(psi, tau0, 0.0, springs, steps)[0])

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from core.validation import DOMAIN, Interval
+from core.validation import DOMAIN, MOTOR_DOMAIN, Interval
 
 #: Lengths, amplitude, frequency and preload: any positive finite number.
 POSITIVE = Interval(0.0, None, lo_open=True)
@@ -46,8 +46,11 @@ class Rod:
     at x = L (m) and vibration ``frequency`` f (Hz).
 
     Validated (ValueError names the parameter, its value and the allowed range):
-    half_length, thickness, amplitude, frequency > 0; nu_rod in (-1, 0.5]. The model
-    (eq 2: strain uniform across the thickness) assumes delta << L; it is not enforced.
+    half_length, thickness, amplitude, frequency > 0 and within their rows of
+    ``core.validation.MOTOR_DOMAIN`` (L in [1e-6, 100] m, delta in [1e-9, 100] m,
+    A in [1e-12, 0.1] m, f in [1e-3, 1e9] Hz), where every drive amplitude is finite;
+    nu_rod in (-1, 0.5]. The model (eq 2: strain uniform across the thickness) assumes
+    delta << L; it is not enforced.
     """
 
     half_length: float
@@ -58,7 +61,8 @@ class Rod:
 
     def __post_init__(self) -> None:
         for name in ("half_length", "thickness", "amplitude", "frequency"):
-            object.__setattr__(self, name, POSITIVE.check(name, getattr(self, name)))
+            value = POSITIVE.check(name, getattr(self, name))
+            object.__setattr__(self, name, MOTOR_DOMAIN[name].check(name, value))
         object.__setattr__(self, "nu_rod", POISSON.check("nu_rod", self.nu_rod))
 
     @property

@@ -1,0 +1,226 @@
+"""The motor under a load: the steady operating point for a load force, and the rotor's
+start-up from rest (docs/physics.md, section 11.3).
+
+A load force F_L opposes the rotor's motion. In steady motion the mean thrust balances
+it, mu N r(psi, tau0, v) = F_L, with r the moving rotor's thrust ratio
+(``core.motor.moving_rotor``): one speed v in [0, v0] since r falls monotonically from
+r(0) (stall, eq 41) to 0 at the no-load speed v0; none if F_L exceeds the stall thrust
+mu N r(0). A rotor of (equivalent translational) mass m starts from rest as
+
+    m dV/dt = mu N r(v) - F_L,        V = v omega |u0|,
+
+each period's thrust taken from the steady thrust-speed curve: valid while V changes
+little over one period (``StartUp.periods_per_unit``: periods in one time unit
+m omega |u0| / (mu N)). In that time unit and v, dv/dt' = r(v) - l, l = F_L / (mu N);
+energies in m (omega u0)^2: d(v^2/2)/dt' = r v - l v (thrust work = kinetic energy + work
+against the load).
+
+The curve r(v) is the MDR's at ``n`` speeds from 0 to the full-slip speed, interpolated
+monotonically (PCHIP); the start-up integrates the ODE on it (``scipy.integrate.solve_ivp``,
+rtol 1e-10) and the times to 90 % and 99 % of the operating speed by quadrature of
+dt' = dv / (r(v) - l).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.integrate import cumulative_trapezoid, quad, solve_ivp
+from scipy.interpolate import PchipInterpolator
+from scipy.optimize import brentq
+
+from core.motor.motor import Motor
+from core.motor.moving_rotor import (
+    SPRINGS,
+    STEPS,
+    _check_contact,
+    _count,
+    _one,
+    _resolution,
+    full_slip_speed,
+    moving_rotor,
+    thrust_speed_curve,
+)
+from core.validation import MOTOR_DOMAIN, shown
+
+#: Speeds on the thrust-speed curve the start-up interpolates.
+CURVE_POINTS = 48
+
+
+def _load_ratio(value: object) -> float:
+    return MOTOR_DOMAIN["load_ratio"].check("load_ratio", value)
+
+
+def operating_speed(psi: float, tau0: float, load_ratio: float, *, springs: int = SPRINGS,
+                    steps: int = STEPS, xtol: float = 1e-9) -> float:
+    """The steady speed v = V / (omega u0) at which the thrust ratio equals the load
+    ratio l = F_L / (mu N) in [0, 1]: r(v) = l (brentq on the MDR's r between 0 and the
+    full-slip speed). ValueError if l exceeds the stall thrust ratio r(0) (the rotor
+    cannot move: it is stalled, and a larger load would drive it backwards)."""
+    psi, tau0 = _check_contact(psi, tau0, 0.2, 0.3)
+    load = _load_ratio(load_ratio)
+    springs, steps = _resolution(springs, steps)
+    xtol = MOTOR_DOMAIN["xtol"].check("xtol", xtol)
+    stall = _one(psi, tau0, 0.0, springs, steps)[0]
+    if load > stall:
+        raise ValueError(f"load_ratio = {shown(load)} exceeds the stall thrust ratio "
+                         f"r(0) = {stall:.6g} of this contact: the rotor cannot move")
+    if load == stall:
+        return 0.0
+    return float(brentq(lambda s: _one(psi, tau0, s, springs, steps)[0] - load, 0.0,
+                        full_slip_speed(psi, tau0), xtol=xtol))
+
+
+@dataclass(frozen=True)
+class OperatingPoint:
+    """The steady operating point of the motor at x0 under a load force (SI): load (N),
+    speed V (m/s) and v = V / (omega |u0|), output power V F_L, input power, friction loss
+    (W, means over a period) and efficiency (output / input; ``MovingRotor``)."""
+
+    x0: float
+    load: float
+    v: float
+    speed: float
+    output_power: float
+    input_power: float
+    friction_loss: float
+    efficiency: float
+
+
+def _contact_at(motor: Motor, x0: float) -> tuple[float, float, float]:
+    """(psi, tau0, omega |u0|) at one point x0, or ValueError where the contact never
+    opens or psi is outside the moving rotor's range."""
+    x = motor.rod.check_x0(x0)
+    if x.ndim != 0:
+        raise ValueError(f"x0 must be one number, got shape {x.shape}")
+    p = motor.profile(x)
+    if not p.opens:
+        raise ValueError(f"x0 = {shown(float(x))}: the contact never opens there (Phi = "
+                         f"{float(p.load_factor):.3g} >= 8), the model does not apply")
+    psi, tau0 = _check_contact(float(p.psi), float(p.tau0), motor.mu, 0.3)
+    return psi, tau0, motor.rod.omega * abs(float(p.u0))
+
+
+def operating_point(motor: Motor, x0: float, load: float, *, springs: int = SPRINGS,
+                    steps: int = STEPS) -> OperatingPoint:
+    """The motor's steady state at contact point x0 (m) under a load force ``load`` (N, in
+    [0, 1e6]) opposing the rotor: speed, powers and efficiency. ValueError naming the
+    load if it exceeds the stall thrust mu N r(0) there."""
+    load = MOTOR_DOMAIN["load"].check("load", load)
+    psi, tau0, scale = _contact_at(motor, x0)
+    mu_n = motor.mu * motor.preload
+    if load > mu_n:
+        raise ValueError(f"load = {shown(load)} N exceeds the largest thrust mu N = "
+                         f"{mu_n:.6g} N: the rotor cannot move")
+    try:
+        v = operating_speed(psi, tau0, load / mu_n, springs=springs, steps=steps)
+    except ValueError as err:
+        stall = _one(psi, tau0, 0.0, *_resolution(springs, steps))[0] * mu_n
+        raise ValueError(f"load = {shown(load)} N exceeds the stall thrust {stall:.6g} N at "
+                         f"x0 = {shown(float(x0))} m: the rotor cannot move") from err
+    res = moving_rotor(psi, tau0, v, springs=springs, steps=steps)
+    power = mu_n * scale  # W per unit of the dimensionless powers
+    return OperatingPoint(
+        x0=float(x0), load=load, v=v, speed=v * scale,
+        output_power=float(res.output_power) * power,
+        input_power=float(res.input_power) * power,
+        friction_loss=float(res.friction_loss) * power,
+        efficiency=float(res.efficiency))
+
+
+@dataclass(frozen=True)
+class StartUp:
+    """The rotor's start-up from rest at x0 under a load (SI; read-only arrays over the
+    time samples t).
+
+    Attributes:
+        t: time (s); speed: V (m/s); thrust: mu N r(v) (N).
+        work_thrust, kinetic_energy, work_load: cumulative work of the thrust, kinetic
+            energy m V^2 / 2 and cumulative work against the load (J), each from the
+            samples (trapezoid rule), so that their balance checks the integration.
+        operating_speed: the steady speed (m/s) of the interpolated curve.
+        t90, t99: times to 90 % and 99 % of it (s).
+        time_unit: m omega |u0| / (mu N) (s); periods_per_unit: rod periods in it (the
+            model wants many).
+    """
+
+    t: NDArray[np.float64]
+    speed: NDArray[np.float64]
+    thrust: NDArray[np.float64]
+    work_thrust: NDArray[np.float64]
+    kinetic_energy: NDArray[np.float64]
+    work_load: NDArray[np.float64]
+    operating_speed: float
+    t90: float
+    t99: float
+    time_unit: float
+    periods_per_unit: float
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if isinstance(value, np.ndarray):
+                value = np.array(value)
+                value.setflags(write=False)
+                object.__setattr__(self, f.name, value)
+
+    @property
+    def energy_residual(self) -> NDArray[np.float64]:
+        """work_thrust - kinetic_energy - work_load (J): zero for the exact motion."""
+        return self.work_thrust - self.kinetic_energy - self.work_load
+
+
+def thrust_curve(psi: float, tau0: float, n: int = CURVE_POINTS, *, springs: int = SPRINGS,
+                 steps: int = STEPS) -> PchipInterpolator:
+    """r(v) as a monotone (PCHIP) interpolant of the MDR's thrust-speed curve at n speeds
+    from 0 to the full-slip speed; r = -1 beyond (the curve is flat there)."""
+    curve = thrust_speed_curve(psi, tau0, n, springs=springs, steps=steps)
+    return PchipInterpolator(curve.v, curve.thrust_ratio, extrapolate=True)
+
+
+def start_up(motor: Motor, x0: float, mass: float, load: float = 0.0, *,
+             samples: int = 400, n: int = CURVE_POINTS, springs: int = SPRINGS,
+             steps: int = STEPS) -> StartUp:
+    """The start-up from rest of a rotor of (equivalent translational) mass ``mass`` (kg,
+    in [1e-9, 1e6]) at contact point x0 (m) under a load force ``load`` (N, in [0, 1e6]):
+    m dV/dt = mu N r(v) - F_L on the thrust-speed curve (module docstring), sampled at
+    ``samples`` times from 0 to 1.5 t99. ValueError if the load stalls the rotor."""
+    mass = MOTOR_DOMAIN["mass"].check("mass", mass)
+    load = MOTOR_DOMAIN["load"].check("load", load)
+    count = _count("n", samples)
+    psi, tau0, scale = _contact_at(motor, x0)
+    mu_n = motor.mu * motor.preload
+    r = thrust_curve(psi, tau0, n, springs=springs, steps=steps)
+    ell = load / mu_n
+    if ell >= float(r(0.0)):
+        raise ValueError(f"load = {shown(load)} N is not below the stall thrust "
+                         f"{float(r(0.0)) * mu_n:.6g} N at x0 = {shown(float(x0))} m: the "
+                         "rotor does not start")
+    v_f = full_slip_speed(psi, tau0)
+    v_op = float(brentq(lambda s: float(r(s)) - ell, 0.0, v_f, xtol=1e-14, rtol=1e-15))
+
+    def time_to(fraction: float) -> float:
+        return quad(lambda s: 1.0 / (float(r(s)) - ell), 0.0, fraction * v_op,
+                    epsabs=0.0, epsrel=1e-11, limit=200)[0]
+
+    t90, t99 = time_to(0.9), time_to(0.99)
+    t = np.linspace(0.0, 1.5 * t99, count)
+    sol = solve_ivp(lambda _, y: [float(r(min(y[0], v_f))) - ell], (0.0, t[-1]), [0.0],
+                    t_eval=t, rtol=1e-10, atol=1e-13, method="DOP853")
+    v = sol.y[0]
+    rv = r(v)
+    unit = mass * scale / mu_n  # s per time unit
+    energy = mass * scale * scale  # J per unit of v^2
+    return StartUp(
+        t=t * unit, speed=v * scale, thrust=rv * mu_n,
+        work_thrust=energy * cumulative_trapezoid(rv * v, t, initial=0.0),
+        kinetic_energy=0.5 * energy * v * v,
+        work_load=energy * ell * cumulative_trapezoid(v, t, initial=0.0),
+        operating_speed=v_op * scale, t90=t90 * unit, t99=t99 * unit, time_unit=unit,
+        periods_per_unit=unit * motor.rod.frequency)
+
+
+__all__ = ["OperatingPoint", "StartUp", "operating_point", "operating_speed", "start_up",
+           "thrust_curve"]
