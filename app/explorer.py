@@ -18,6 +18,7 @@ from __future__ import annotations
 import html
 import io
 import math
+import textwrap
 import time
 from functools import partial
 from urllib.parse import urlencode
@@ -26,6 +27,7 @@ import numpy as np
 import panel as pn
 import param
 from panel.io import hold
+from panel.io.location import Location
 from panel.io.resources import get_dist_path
 
 from app import export, layout, presentation
@@ -58,10 +60,11 @@ from app.state import (
     parse_value,
     query_value,
 )
-from app.widgets import ExactSlider, LabelledCheckbox, LabelledSlider, bind
+from app.widgets import ExactSlider, LabelledCheckbox, LabelledSlider, bind, follow
 from core import Contact
 
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
+MESSAGE_CHARS = 400  # a message longer than this (it quotes a long link) is cut
 URL_DELAY_S = 0.4  # the URL follows the parameters this long after the last change (s)
 
 #: the state's parameters that define the contact (`ExplorerState.contact`)
@@ -89,8 +92,11 @@ class Explorer(param.Parameterized):
                                 doc="what the user set; everything on the page shows it")
 
     def __init__(self, state: ExplorerState | None = None,
-                 query: dict | None = None) -> None:
+                 query: dict | None = None, location: Location | None = None
+                 ) -> None:
         state = state or ExplorerState()
+        #: the page's URL (`app.guard.location_of`), None without a served page
+        self.location = location
         query = dict(query or {})
         view = query_value(query.pop("view", ""))
         motor_query = {k: v for k, v in query.items() if k.startswith(MOTOR_PREFIX)}
@@ -206,6 +212,8 @@ class Explorer(param.Parameterized):
         return scene not in self.tabbed or self.tabbed[self.tabs.active] is scene
 
     def _on_tab(self, event) -> None:
+        if event.new not in range(len(self.tabbed)):  # (from a script: no such tab)
+            return
         with hold():
             self.catch_up([self.tabbed[event.new]])
             self._show_figure(event.new)
@@ -280,6 +288,12 @@ class Explorer(param.Parameterized):
             return
         psi, tau0 = contact
         m = self.motor.state
+        try:
+            Contact(psi, tau0, mu=m.mu, nu=m.nu)
+        except ValueError as err:  # (e.g. a preload so light that tau0 rounds to pi/2)
+            self.show_messages([*self.messages, f"The plots cannot follow the rotor's "
+                                f"contact at x₀: {err}"])
+            return
         self.state.param.update(physical=False, psi=psi, tau0=tau0, mu=m.mu, nu=m.nu)
 
     @param.depends("state.preset", watch=True)
@@ -423,7 +437,7 @@ class Explorer(param.Parameterized):
             label="τ = ωt (rad): time", value=s.tau, start=self.contact.tau0,
             end=self.contact.tau_end, step=0.002,
             parse=lambda text: parse_tau(text, self.contact), name="tau")
-        self.tau_slider.param.watch(lambda e: setattr(s, "tau", e.new), "value")
+        follow(self.tau_slider, s.param.tau)
         self.play_button = pn.widgets.Button(label="▶ Play", color="success", width=110)
         self.play_button.on_click(lambda _: setattr(s, "playing", not s.playing))
         self.step_button = pn.widgets.Button(label="Step", width=100)
@@ -473,7 +487,8 @@ class Explorer(param.Parameterized):
         Messages quote what the user sent (the URL's values): they are shown as text,
         never as markup.  Unchanged messages are not sent again.
         """
-        text = "<br>".join(html.escape(m) for m in messages)
+        text = "<br>".join(html.escape(textwrap.shorten(m, MESSAGE_CHARS, placeholder=" …"))
+                           for m in messages)
         if text != self.message.object or self.message.visible != bool(messages):
             self.message.param.update(object=text, visible=bool(messages))
 
@@ -563,7 +578,7 @@ class Explorer(param.Parameterized):
         reports the new location back); during a slider drag it would compete with the
         plots for the browser, so a burst of changes writes the URL once, at its end.
         """
-        loc, doc = pn.state.location, pn.state.curdoc
+        loc, doc = self.location, pn.state.curdoc
         if loc is None or doc is None:
             return
         if doc.session_context is None:  # no server session (a notebook): no loop to wait on
@@ -598,7 +613,7 @@ class Explorer(param.Parameterized):
             return presentation.presentation(self)
         return layout.page(self)
 
-    def servable(self) -> pn.Column:
+    def servable(self, page: pn.Column | None = None) -> pn.Column:
         """Mark the page servable (the application script `app/main.py` calls this).
 
         Panel points its components' stylesheets at its CDN until it renders the page's
@@ -610,7 +625,8 @@ class Explorer(param.Parameterized):
         doc = pn.state.curdoc
         if doc is not None:
             doc.template_variables.setdefault("dist_url", get_dist_path(cdn=False))
-        page = self.view().servable(title=layout.TITLE)
+        page = (page or self.view()).servable(title=layout.TITLE,
+                                              location=self.location or True)
         if doc is not None:
             doc.template_variables["meta"] = layout.META
             pn.state.on_session_destroyed(self.close)
@@ -626,8 +642,9 @@ class Explorer(param.Parameterized):
             self.motor.close()
 
 
-def build_explorer(query: dict | None = None) -> Explorer:
+def build_explorer(query: dict | None = None,
+                   location: Location | None = None) -> Explorer:
     """Build one session's explorer; `query` defaults to the page's URL query."""
     if query is None:
         query = dict(pn.state.session_args) if pn.state.curdoc is not None else {}
-    return Explorer(query=query)
+    return Explorer(query=query, location=location)

@@ -1,9 +1,10 @@
-"""Entry point of `panel serve app/main.py`: one explorer per browser session."""
+"""Entry point of `panel serve app/main.py`: one explorer per browser session, its page
+built from the URL whatever the URL holds (`app.guard`)."""
 
 import panel as pn
 
-from app.explorer import build_explorer
+from app.guard import serve_page
 
 pn.extension("katex", notifications=False)
 
-build_explorer().servable()
+serve_page()

@@ -41,6 +41,7 @@ from app.phases import STICK_COLOR, style
 from app.scenes import FRAME_LEVEL, Scene, draw, png_name, style_figure
 from app.wire import column, inline
 from core import Contact
+from core.clock import half_sines
 
 DRIVE = 0.15  # the drawn normal amplitude H, in sphere radii
 MAX_SIDE = 0.45  # the largest drawn tangential amplitude u0, in sphere radii
@@ -57,13 +58,19 @@ def drawn_amplitudes(c: Contact) -> tuple[float, float]:
     return DRIVE, min(DRIVE * math.tan(c.theta), MAX_SIDE)
 
 
+def one_minus_sin_tau0(c: Contact) -> float:
+    """1 - sin tau0 = 2 sin^2(e/2), e = pi/2 - tau0, without the cancellation of the
+    difference (it stays > 0 for tau0 within 1e-12 of pi/2, where sin tau0 rounds to 1)."""
+    return 2.0 * half_sines(c.tau0)[0] ** 2
+
+
 def scale_note(c: Contact) -> str:
     """What the drawing exaggerates, in words."""
     H, u0 = drawn_amplitudes(c)
     sc = c.scales
     if sc is not None:  # SI inputs: the true factor, drawn H / true H (both over R)
         # a* = sqrt(R (H - h) / 2), alpha* = H - h = H (1 - sin tau0)
-        true_h = sc.alpha_star**2 / (2 * sc.a_star**2 * (1 - math.sin(c.tau0)))
+        true_h = sc.alpha_star**2 / (2 * sc.a_star**2 * one_minus_sin_tau0(c))
         note = f"displacements drawn ×{H / true_h:.3g}"
     else:
         note = "not to scale: H drawn as 0.15 R"
@@ -79,6 +86,7 @@ def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
     line = c.at(taus)
     H, u0 = drawn_amplitudes(c)
     s0 = math.sin(c.tau0)
+    gap = one_minus_sin_tau0(c)  # 1 - s0
     sin_t = np.sin(taus)
     # centre of the lower sphere (eq 3), the upper one's is (0, 1); its top at rest is
     # H s0 below the upper sphere's bottom (the gap h, eq 4)
@@ -94,7 +102,7 @@ def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
     upper_y = np.where(touching[:, None], np.maximum(upper_y, mid[:, None]), upper_y)
     lower_y = np.where(touching[:, None], np.minimum(lower_y, mid[:, None]), lower_y)
     # the patch: core's a / a* and b / a*, a* drawn as sqrt((H - h) / 2) radii (eq 7)
-    a_star = math.sqrt(H * (1.0 - s0) / 2)
+    a_star = math.sqrt(H * gap / 2)
     a, b = line.contact_radius * a_star, line.stick_radius * a_star
     xc = cx / 2  # midway between the centres
     y = mid
@@ -110,7 +118,7 @@ def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
     P, T = line.normal_force, line.tangential_force
     # one length scale for both (T / T0 and mu P / T0 = P / P0 are in the same units):
     # the contact's largest P, (1 - sin tau0)^(3/2) P0 at pi/2 (eq 9), is ARROW long
-    unit = ARROW / (1.0 - s0) ** 1.5
+    unit = ARROW / gap**1.5
     shown = np.stack([P, np.abs(T)], axis=1) * unit > 0.01  # a force drawn with its head
     labels = np.array([[f"P = {p:.3g} P₀", f"T = {t:+.3g} T₀"] for p, t in zip(P, T,
                                                                               strict=True)],

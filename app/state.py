@@ -25,8 +25,10 @@ TAU0 = PI / 6  # all the paper's figures: H = 2 h
 
 
 #: The app's own settings, beside core's parameters (whose ranges are core.DOMAIN):
-#: the animation speed, in contacts per 4 s.
-APP_DOMAIN: dict[str, Interval] = {"speed": Interval(0.05, 10.0)}
+#: the animation speed, in contacts per 4 s, and the time shown, tau (rad), which lies in
+#: one contact [tau0, pi - tau0] (core takes any real tau, modulo 2 pi).
+APP_DOMAIN: dict[str, Interval] = {"speed": Interval(0.05, 10.0),
+                                   "tau": Interval(-math.pi / 2, 3 * math.pi / 2)}
 
 
 def domain(name: str) -> Interval:
@@ -121,7 +123,8 @@ class ExplorerState(param.Parameterized):
     tau0 = param.Number(default=math.pi / 6, **bounds("tau0"), doc="start of contact (rad)")
     mu = param.Number(default=0.2, **bounds("mu"), doc="friction coefficient")
     nu = param.Number(default=0.3, **bounds("nu"), doc="Poisson ratio")
-    tau = param.Number(default=17 * math.pi / 24, doc="current time omega t (rad)")
+    tau = param.Number(default=17 * math.pi / 24, **bounds("tau"),
+                       doc="current time omega t (rad)")
     log_psi = param.Boolean(default=False, doc="log psi axis on the impulse curve")
     playing = param.Boolean(default=False, doc="animation running")
     speed = param.Number(default=1.0, **bounds("speed"), doc="contacts per 4 s")

@@ -22,6 +22,8 @@ from __future__ import annotations
 
 import asyncio
 import html
+import logging
+import math
 from collections.abc import Callable
 from typing import ClassVar
 
@@ -31,16 +33,44 @@ from bokeh.document import Document
 from panel.io import hold, unlocked
 from panel.io.state import set_curdoc
 
+log = logging.getLogger(__name__)
+
 #: Style of the message under a box (dark red on white: 7.7:1 contrast).
 ERROR_STYLE = {"color": "#a4161a", "font-size": "0.9em", "margin-top": "0"}
 
 
-def bind(widget: param.Parameterized, parameter: param.Parameter) -> None:
-    """Keep `widget.value` and `parameter` (of a Parameterized instance, e.g.
-    `state.param.psi`) equal, whichever of the two changes."""
+def follow(widget: param.Parameterized, parameter: param.Parameter) -> None:
+    """Set `parameter` (of a Parameterized instance, e.g. `state.param.psi`) to each new
+    `widget.value`.
+
+    A widget value the parameter refuses (one no browser sends: NaN, or outside its
+    bounds, from a script) changes nothing: the widget shows the parameter's value
+    again, and the refusal is logged at debug level only (a client cannot fill the log).
+    """
     owner, name = parameter.owner, parameter.name
-    widget.param.watch(lambda e: setattr(owner, name, e.new), "value")
+
+    def to_owner(event: param.parameterized.Event) -> None:
+        try:
+            setattr(owner, name, event.new)
+        except ValueError as err:
+            log.debug("refused %s = %.80r from the browser: %s", name, event.new, err)
+            show_later(widget, getattr(owner, name))
+
+    widget.param.watch(to_owner, "value")
+
+
+def bind(widget: param.Parameterized, parameter: param.Parameter) -> None:
+    """Keep `widget.value` and `parameter` equal, whichever of the two changes (the
+    widget's values as `follow` takes them)."""
+    follow(widget, parameter)
+    owner, name = parameter.owner, parameter.name
     owner.param.watch(lambda e: setattr(widget, "value", e.new), name)
+
+
+def finite(value: object) -> bool:
+    """Whether `value` is a real, finite number (what a slider of the page can send)."""
+    return (isinstance(value, int | float) and not isinstance(value, bool)
+            and math.isfinite(value))
 
 
 def show_later(widget: param.Parameterized, value: object) -> None:
@@ -190,6 +220,9 @@ class ExactSlider(pn.viewable.Viewer):
         return f"{v:.{self._digits}g}"
 
     def _on_slider(self, event: param.parameterized.Event) -> None:
+        if not finite(event.new):  # (from a script: no slider sends it) put it back
+            show_later(self._slider, self.value)
+            return
         # everything the move changes (this box, the plots, the readout) goes to the
         # browser in one message
         with hold():
@@ -215,8 +248,8 @@ class ExactSlider(pn.viewable.Viewer):
             model.data.on_change("value", self._on_browser_value)
 
     def _on_browser_value(self, attr: str, old: float, new: float) -> None:
-        if new == self.value:  # (the server's own change of the slider, echoed by Bokeh)
-            return
+        if new == self.value or not finite(new):  # (the server's own change, echoed by
+            return  # Bokeh; or what no slider sends, which `_on_slider` puts back)
         self._due = new
         if not self._scheduled:
             self._scheduled = True
