@@ -41,6 +41,7 @@ def test_the_readme_api_example_gives_the_numbers_it_states() -> None:
     assert c.tau1 == pytest.approx(2.3562, abs=5e-5)  # "2.3562 (3 pi/4)"
     assert math.degrees(c.theta0) == pytest.approx(13.65, abs=5e-3)
     assert ns["coulomb_certificate"](c).worst < 1e-13  # "~1e-14"
+    assert ns["s"].scales.T0 > 0  # the SI example's scales
     # (the Motor example's figures: tests/core/test_moving_rotor.py)
     # the traction and pressure examples broadcast r against tau
     assert ns["c"].traction(ns["r"][:, None], ns["tau"]).shape == (ns["r"].size,
