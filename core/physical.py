@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from core.validation import DOMAIN, _as_float, check_param, shown
+from core.validation import DOMAIN, check_param, is_flat, shown
 
 SQRT8 = 2.0 * math.sqrt(2.0)
 
@@ -76,7 +76,7 @@ def second_body(R2: object, G2: object, nu2: object) -> tuple[float | None, ...]
     """(R2, G2, nu2) validated: None (body 1's value), or G2 in DOMAIN["G"], nu2 in
     DOMAIN["nu"], R2 in DOMAIN["R"] or +inf (a flat face). ValueError naming the input."""
     R2_ = None if R2 is None else (
-        math.inf if _as_float(R2) == math.inf else DOMAIN["R"].check("R2", R2))
+        math.inf if is_flat(R2) else DOMAIN["R"].check("R2", R2))
     G2_ = None if G2 is None else DOMAIN["G"].check("G2", G2)
     nu2_ = None if nu2 is None else DOMAIN["nu"].check("nu2", nu2)
     return R2_, G2_, nu2_
