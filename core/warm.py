@@ -5,8 +5,9 @@ numba compiles a kernel on its first call and caches it on disk (``NUMBA_CACHE_D
 and the annulus ~4-5 s each, the DEM rules ~1 s), tens of ms from the cache.
 ``warm()`` makes that first call with tiny inputs for the closed form, ``warm_methods()``
 for the methods of ``core.numerics`` and the moving rotor of ``core.motor`` (the Methods
-and Motor cards), so that a server can do it in the background at start-up and an image
-can do it at build time (``python -m core.warm``: both).
+and Motor cards), so that a server can load the closed form before it takes its first page and the
+methods in another process meanwhile, and an image can do both at build time
+(``python -m core.warm [closed-form | methods]``: both by default).
 """
 
 from __future__ import annotations
@@ -46,5 +47,9 @@ def warm_all() -> None:
     warm_methods()
 
 
-if __name__ == "__main__":
-    warm_all()
+if __name__ == "__main__":  # python -m core.warm [closed-form | methods]: both by default
+    import sys
+
+    parts = {"closed-form": warm, "methods": warm_methods}
+    for part in sys.argv[1:] or parts:
+        parts[part]()
