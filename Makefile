@@ -13,7 +13,7 @@ PYTHON ?= $(shell for p in python3.13 python3.12 \
 	$$(ls -d "$$(pyenv root 2>/dev/null)"/versions/3.1[2-9]*/bin/python3 2>/dev/null) python3; do \
 	"$$p" -c 'import sys; sys.exit(sys.version_info < (3, 12))' >/dev/null 2>&1 && { echo "$$p"; break; }; done)
 
-.PHONY: venv serve test test-core test-app lint bench bench-charts browser docker-smoke clean lock
+.PHONY: venv serve test test-fast test-core test-app lint bench bench-charts browser docker-smoke clean lock
 
 $(VENV)/.installed: pyproject.toml constraints.txt
 	@test -n "$(PYTHON)" || { echo "error: no Python >= 3.12 found; install one or pass PYTHON=/path/to/python3.12" >&2; exit 1; }
@@ -35,15 +35,30 @@ browser:
 		$$SUDO apt-get update -qq && $$SUDO apt-get install -y -qq chromium >/dev/null; }
 	@chromium --version
 
+# Debian's LAMMPS (lmp with the GRANULAR package) for the DEM bench (core.dem_check).
+.PHONY: lammps
+lammps:
+	@command -v lmp >/dev/null 2>&1 || { \
+		SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
+		$$SUDO apt-get update -qq && $$SUDO env DEBIAN_FRONTEND=noninteractive \
+			apt-get install -y -qq lammps >/dev/null; }
+	@lmp -h | sed -n '2p'
+
 lint: venv
 	$(VENV)/bin/ruff check .
 
 # (the compiled kernels first, into numba's cache: the servers the browser tests start
 # then load them rather than compile them while the tests run)
-test: venv browser
+test: venv browser lammps
 	$(VENV)/bin/ruff check .
 	$(PY) -m core.warm
 	$(VENV)/bin/pytest
+
+# Every test that needs no browser (core, numerics, the app's document, export, wire,
+# sessions and server security; not the browser tests nor the nginx replicas): ~2 min.
+test-fast: venv
+	$(VENV)/bin/ruff check .
+	$(VENV)/bin/pytest -q -m "not browser and not slow"
 
 test-core: venv
 	$(VENV)/bin/pytest tests/core tests/numerics

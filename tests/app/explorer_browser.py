@@ -45,19 +45,44 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
-def wait_for_http(url: str, timeout: float = 60.0) -> None:
-    """Poll `url` until it answers 200; TimeoutError otherwise."""
+def wait_until(condition, timeout: float = 20.0, interval: float = 0.05, what: str = ""):
+    """Call `condition()` every `interval` s until it returns something true, and return
+    that; TimeoutError if it has not after `timeout` s (`what`: what was waited for)."""
     deadline = time.monotonic() + timeout
     while True:
+        value = condition()
+        if value:
+            return value
+        if time.monotonic() > deadline:
+            raise TimeoutError(f"waited {timeout} s for {what or condition}")
+        time.sleep(interval)
+
+
+def steady(read, quiet: float = 0.5, timeout: float = 20.0, interval: float = 0.1):
+    """`read()` once it has returned the same value for `quiet` s (what the browser
+    shows has settled); TimeoutError if it still changes after `timeout` s."""
+    last = {"value": read(), "since": time.monotonic()}
+
+    def unchanged() -> bool:
+        now = read()
+        if now != last["value"]:
+            last.update(value=now, since=time.monotonic())
+        return time.monotonic() - last["since"] >= quiet
+
+    wait_until(unchanged, timeout, interval, what=f"{read} to stay the same for {quiet} s")
+    return last["value"]
+
+
+def wait_for_http(url: str, timeout: float = 60.0) -> None:
+    """Poll `url` until it answers 200; TimeoutError otherwise."""
+    def answers() -> bool:
         try:
             with urllib.request.urlopen(url, timeout=5) as r:
-                if r.status == 200:
-                    return
+                return r.status == 200
         except OSError:
-            pass
-        if time.monotonic() > deadline:
-            raise TimeoutError(f"{url} did not answer within {timeout} s")
-        time.sleep(0.3)
+            return False
+
+    wait_until(answers, timeout, interval=0.3, what=f"{url} to answer 200")
 
 
 @contextlib.contextmanager

@@ -9,7 +9,7 @@ and every key the "Keyboard" card lists, pressed where it says.
 from __future__ import annotations
 
 import pytest
-from explorer_browser import open_explorer
+from explorer_browser import open_explorer, wait_until
 
 from app.explorer import Explorer
 from app.layout import KEY_NAMES, KEYS
@@ -104,7 +104,9 @@ def axe_findings(browser, url) -> list[dict]:
     from axe_playwright_python.sync_playwright import Axe
 
     page, _ = page_with_cards_open(browser, url)
-    page.wait_for_timeout(1000)  # the formulas typeset, the plots drawn
+    wait_until(lambda: page.locator(".katex-display").count() >= 4,
+               what="the formulas typeset")
+    page.wait_for_function("() => Bokeh.documents[0].is_idle")  # every view drawn
     findings = Axe().run(page).response["violations"]
     page.close()
     return findings
@@ -433,12 +435,9 @@ def test_keyboard_card_lists_keys_that_work(browser, url) -> None:
 
     # a number box: a typed value applies on Enter (once the box shows the slider's value)
     box = page.get_by_role("textbox", name="μ friction")
-    for _ in range(100):
-        if float(box.input_value()) == start:
-            break
-        page.wait_for_timeout(200)
+    wait_until(lambda: float(box.input_value()) == start, what="the box to show mu")
     box.fill("0.35")
-    page.wait_for_timeout(500)
+    page.wait_for_timeout(500)  # time let pass on purpose: nothing may apply the text
     assert slider(page, "mu") == start  # typed, not applied
     box.press("Enter")
     wait_slider(page, "mu", 0.35)

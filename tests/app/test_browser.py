@@ -17,6 +17,8 @@ from explorer_browser import (
     ROOT,
     column,
     open_explorer,
+    steady,
+    wait_until,
 )
 
 from app import spheres
@@ -36,10 +38,17 @@ def errors(console: list[str]) -> list[str]:
             and not any(s in m for s in IGNORED_CONSOLE)]
 
 
+def typeset(page, formulas: int = 4) -> None:
+    """Wait until KaTeX has typeset at least `formulas` displayed formulas."""
+    wait_until(lambda: page.locator(".katex-display").count() >= formulas,
+               what=f"{formulas} typeset formulas")
+
+
 @pytest.mark.smoke
 def test_page_loads_without_console_errors_and_screenshot(browser, url) -> None:
     page, console = open_explorer(browser, url)
-    page.wait_for_timeout(1500)  # let late errors (resources, KaTeX) surface
+    page.wait_for_load_state("networkidle")  # every resource loaded or failed
+    typeset(page)  # KaTeX's errors, if any, are in the console now
     assert errors(console) == []
     T = column(page, "force", "T")
     assert len(T) > 300 and max(T) > 0 > min(T)
@@ -54,14 +63,7 @@ def test_page_loads_without_console_errors_and_screenshot(browser, url) -> None:
 
 def settled(page, name: str, col: str, timeout_ms: int = 20_000) -> list[float]:
     """The column once it has stopped changing for 0.5 s (the browser caught up)."""
-    last = column(page, name, col)
-    for _ in range(timeout_ms // 500):
-        page.wait_for_timeout(500)
-        now = column(page, name, col)
-        if now == last:
-            return now
-        last = now
-    raise AssertionError(f"{name}.{col} kept changing for {timeout_ms} ms")
+    return steady(lambda: column(page, name, col), quiet=0.5, timeout=timeout_ms / 1000)
 
 
 @pytest.mark.smoke
@@ -139,10 +141,8 @@ def test_number_box_follows_the_slider_and_takes_exact_values(browser, url) -> N
     default = ExplorerState().psi
     page.wait_for_function("(v) => __psi() === v", arg=default, timeout=20_000)
     T = wait_for_new(page, "force", "T", T)
-    for _ in range(50):  # the box follows the slider in the browser
-        if float(box.input_value()) == pytest.approx(default, abs=5e-4):
-            break
-        page.wait_for_timeout(100)
+    wait_until(lambda: float(box.input_value()) == pytest.approx(default, abs=5e-4), 5,
+               what="the box to follow the slider")  # in the browser
     assert float(box.input_value()) == pytest.approx(default, abs=5e-4)
     box.fill("250.5")  # the value the server last heard from the box
     box.press("Enter")
@@ -222,13 +222,13 @@ def test_animation_advances(browser, url) -> None:
     page, console = open_explorer(browser, url)
     page.get_by_role("button", name="▶ Play").click()
     seen = set()
-    for _ in range(30):
+    for _ in range(30):  # samples 50 ms apart: the marker's positions over ~1.5 s
         seen.add(column(page, "force_marker", "x")[0])
-        page.wait_for_timeout(50)
+        page.wait_for_timeout(50)  # (a sampling interval, not a wait)
     page.get_by_role("button", name="‖ Pause").click()
     assert len(seen) >= 5, seen
     stopped = settled(page, "force_marker", "x")
-    page.wait_for_timeout(500)
+    page.wait_for_timeout(500)  # time let pass on purpose: nothing may move in it
     assert column(page, "force_marker", "x") == stopped
     assert errors(console) == []
     page.close()
@@ -243,6 +243,8 @@ def test_play_starts_right_after_slider_moves(browser, url) -> None:
     handle = page.locator(".slider-psi input[type=range]")
     # press Play at several delays around URL_DELAY_S after the last move, when the
     # server writes the new URL
+    # (the pauses are the test's subject, not waits: moves 120 ms apart, then Play
+    # `delay_ms` after the last)
     for round_, delay_ms in enumerate((300, 360, 400, 440, 500, 560)):
         handle.focus()
         for i in range(4):
@@ -302,11 +304,11 @@ def test_play_moves_the_tau_box_slider_and_formulas_with_the_plots(browser, url)
     for play_ms in (4600, 900, 2300):
         play(page)
         seen = set()
-        for _ in range(play_ms // 100):
+        for _ in range(play_ms // 100):  # samples 100 ms apart over play_ms
             shown = page.evaluate(JS_SHOWN_TAU)
             assert_one_tau_shown(shown, psi, tau0)
             seen.add(shown["formula"].split(" (")[0])
-            page.wait_for_timeout(100)
+            page.wait_for_timeout(100)  # (a sampling interval, not a wait)
         pause(page)
         settled(page, "force_marker", "x")
         assert_one_tau_shown(page.evaluate(JS_SHOWN_TAU), psi, tau0)
@@ -404,14 +406,15 @@ def assert_phase_painted(page, expected: str) -> None:
     looks the same after the browser repaints every plot from scratch (a resize)."""
     page.wait_for_function(f"() => ({JS_TRACTION_BOX})().phase === {expected!r}",
                            timeout=20_000)
-    page.wait_for_timeout(700)  # whatever the browser paints on its own is painted now
-    shown = painted_phase(page)
+    # whatever the browser paints on its own is painted once the pixels stay the same
+    shown = steady(lambda: painted_phase(page))
+    box = page.evaluate(JS_TRACTION_BOX)
     size = page.viewport_size
     page.set_viewport_size({"width": size["width"] - 40, "height": size["height"]})
-    page.wait_for_timeout(700)
+    steady(lambda: painted_phase(page))
     page.set_viewport_size(size)
-    page.wait_for_timeout(1000)
-    fresh = painted_phase(page)
+    wait_until(lambda: page.evaluate(JS_TRACTION_BOX) == box, what="the plot's own box")
+    fresh = steady(lambda: painted_phase(page))
     if shown != fresh:
         ARTIFACTS.mkdir(exist_ok=True)
         (ARTIFACTS / "phase_shown.png").write_bytes(shown)
@@ -430,9 +433,10 @@ def test_the_traction_phase_is_painted_after_psi_moves_into_counter_slip(browser
     box.press("Enter")
     assert_phase_painted(page, phase_of(math.sqrt(2) + 1, math.pi / 6, 2.30))
     page.locator(".slider-psi input[type=range]").focus()  # psi
+    T = column(page, "force", "T")
     for _ in range(11):
         page.keyboard.press("PageUp")
-        page.wait_for_timeout(150)
+        T = wait_for_new(page, "force", "T", T)  # the server has shown this move
     settled(page, "force", "T")
     psi = psi_of(page)
     expected = phase_of(psi, math.pi / 6, 2.30)
@@ -502,8 +506,7 @@ def test_the_drive_line_is_painted_over_the_lower_sphere(browser, url) -> None:
     def shot(visible: bool) -> bytes:
         page.evaluate("(v) => { Bokeh.documents[0].get_model_by_name("
                       "'spheres_drive_line').visible = v; }", visible)
-        page.wait_for_timeout(700)
-        return page.screenshot(clip=clip)
+        return steady(lambda: page.screenshot(clip=clip))  # repainted
 
     shown, hidden, again = shot(True), shot(False), shot(True)
     assert shown == again  # (the scene is still: only the line changed)
@@ -571,13 +574,8 @@ def presented(page, width: int, height: int) -> dict:
     (their frames have the aspect of their ranges)."""
     page.wait_for_function(f"() => Object.keys(({JS_PLOT_BOXES})({PRESENTED!r}).boxes)"
                            ".length === 4", timeout=20_000)
-    last = page.evaluate(f"({JS_PLOT_BOXES})", PRESENTED)
-    for _ in range(40):  # until settled: the frames follow the boxes a paint later
-        page.wait_for_timeout(500)
-        shown, last = last, page.evaluate(f"({JS_PLOT_BOXES})", PRESENTED)
-        if shown == last:
-            break
-    assert shown == last, (shown, last)
+    # settled: the frames follow the boxes a paint later
+    shown = steady(lambda: page.evaluate(f"({JS_PLOT_BOXES})", PRESENTED))
     assert shown["view"] == [width, height]
     assert shown["scroll"][0] <= width and shown["scroll"][1] <= height, shown
     boxes = shown["boxes"]
@@ -612,8 +610,7 @@ def test_the_presentation_view_fits_one_screen(browser, url, width: int, height:
     page, console = open_explorer(browser, url + "?view=present&psi=3.5", width=width,
                                   height=height)
     shown = presented(page, width, height)
-    page.wait_for_timeout(1000)  # the controls' text laid out
-    assert page.evaluate(JS_OVERFLOWS) == []
+    assert laid_out(page) == []  # the controls' text laid out: nothing overflows
     assert page.evaluate(JS_CLIPPED_OPTIONS) == []
     assert column(page, "spheres_badge", "text") == [phase_of(3.5, math.pi / 6, 17 * math.pi / 24)]
     if width in (1280, 1920):
@@ -691,6 +688,13 @@ JS_OVERFLOWS = """() => {
 }"""
 
 
+def laid_out(page) -> list:
+    """JS_OVERFLOWS once the page's fonts are loaded and its layout has settled (the
+    list stays the same for 0.5 s)."""
+    page.evaluate("() => document.fonts.ready.then(() => true)")
+    return steady(lambda: page.evaluate(JS_OVERFLOWS))
+
+
 @pytest.mark.parametrize(("width", "height"), [(390, 844), (768, 1024), (1024, 768),
                                                (1280, 720), (1920, 1080), (2560, 1440)])
 def test_nothing_is_clipped_from_a_phone_to_2560_wide(browser, url, width: int,
@@ -699,9 +703,8 @@ def test_nothing_is_clipped_from_a_phone_to_2560_wide(browser, url, width: int,
     every option of the menus fit their boxes at every screen size, a phone's and a
     tablet's included: nothing overflows or is scrolled out of view."""
     page, console = open_explorer(browser, url, width=width, height=height)
-    page.wait_for_function("() => document.querySelectorAll('*').length > 0")
-    page.wait_for_timeout(1500)  # KaTeX typeset
-    assert page.evaluate(JS_OVERFLOWS) == []
+    typeset(page)
+    assert laid_out(page) == []
     assert page.evaluate(JS_CLIPPED_OPTIONS) == []  # every preset's name shows whole
     assert errors(console) == []
     page.close()

@@ -6,12 +6,12 @@ from __future__ import annotations
 import io
 import math
 import re
-import time
 from importlib.metadata import version
 
 import numpy as np
 import pandas as pd
 import pytest
+from explorer_browser import wait_until
 
 from app.explorer import Explorer
 from app.player import frame_taus
@@ -213,7 +213,8 @@ def test_a_download_while_playing_is_the_profile_at_the_frame_shown(ex: Explorer
     tau is in the file and in the file's name."""
     ex.state.playing = True
     try:
-        time.sleep(0.3)  # the player moves on from the state's tau
+        wait_until(lambda: ex.clock_tau() != ex.state.tau, 5,
+                   what="the player to move on from the state's tau")
         text = ex.csv_file("traction").getvalue()
         name = ex.downloads["traction"].filename
         state_tau = ex.state.tau

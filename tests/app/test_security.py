@@ -71,6 +71,7 @@ JS_TEXT_OF_MESSAGE = """() => {
 }"""
 
 
+@pytest.mark.browser
 def test_query_payloads_run_nothing_and_show_as_text(browser, url) -> None:
     assert set(QUERY_KEYS) <= set(PAYLOADS), "a query parameter has no payload"
     page = browser.new_page(viewport={"width": 1400, "height": 1000})
@@ -78,7 +79,7 @@ def test_query_payloads_run_nothing_and_show_as_text(browser, url) -> None:
     page.on("dialog", lambda d: (dialogs.append(d.message), d.dismiss()))
     page.goto(f"{url}?{urlencode(PAYLOADS)}")
     page.wait_for_function(JS_READY, timeout=60_000)
-    page.wait_for_timeout(1500)  # let any injected handler fire
+    page.wait_for_timeout(1500)  # time let pass on purpose: any injected handler fires
     assert dialogs == []
     assert page.evaluate(JS_FIND, "[id^='xss'], a[href^='javascript'], iframe") == []
     shown = page.evaluate(JS_TEXT_OF_MESSAGE)
