@@ -14,14 +14,17 @@ lines (schema, case, units, one line per column), then one header row, then the 
 (17 significant digits: the float64 values exactly).
 
 ``read_history(path)`` reads a CSV of that form (the header block optional) and returns its
-columns; malformed files raise ValueError naming the file, row and column.
+columns, ``parse_history(text)`` the same from text in memory (an upload); malformed files
+raise ValueError naming the file, row and column.
 """
 
 from __future__ import annotations
 
 import csv
+import io
 import json
 import math
+from collections.abc import Iterable
 from pathlib import Path
 
 import numpy as np
@@ -150,43 +153,78 @@ def read_history(path: str | Path, required: tuple[str, ...] = ("tau", "T", "P")
     size = p.stat().st_size
     if size > MAX_BYTES:
         raise ValueError(f"{p}: {size} bytes, more than the {MAX_BYTES} accepted")
-    header: dict[str, str] = {}
     with p.open(newline="") as f:
-        lines = iter(enumerate(f, start=1))
-        first: tuple[int, str] | None = None
-        for numbered in lines:
-            if numbered[1].startswith("#"):
-                key, _, value = numbered[1][1:].partition(":")
-                header[key.strip()] = value.strip()
-            elif numbered[1].strip():
-                first = numbered
-                break
-        if first is None:
-            raise ValueError(f"{p}: no header row (expected columns {', '.join(required)})")
-        lineno, line = first
-        names = [n.strip() for n in next(csv.reader([line]))]
-        missing = [c for c in required if c not in names]
-        if missing:
-            raise ValueError(f"{p}, line {lineno}: no column {missing[0]!r} in the header "
-                             f"row (columns: {', '.join(names)})")
-        rows: list[list[float]] = []
-        for lineno, row in ((n, r) for n, r in
-                            ((n, next(csv.reader([ln]))) for n, ln in lines if ln.strip())):
-            if len(row) != len(names):
-                raise ValueError(f"{p}, line {lineno}: {len(row)} values, expected "
-                                 f"{len(names)} ({', '.join(names)})")
-            try:
-                rows.append([float(v) for v in row])
-            except ValueError:
-                bad = next(i for i, v in enumerate(row) if not _is_float(v))
-                raise ValueError(f"{p}, line {lineno}, column {names[bad]!r}: "
-                                 f"{row[bad]!r} is not a number") from None
-            if len(rows) > MAX_SAMPLES:
-                raise ValueError(f"{p}: more than {MAX_SAMPLES} rows")
+        return _parse_lines(f, str(p), required, MAX_SAMPLES, finite=False)
+
+
+def parse_history(text: str, required: tuple[str, ...] = ("tau", "T", "P"), *,
+                  source: str = "the text", max_rows: int = MAX_SAMPLES
+                  ) -> tuple[dict[str, str], dict[str, NDArray[np.float64]]]:
+    """``read_history`` of a CSV held in memory (an upload, never written to disk): the
+    same (header, columns) and the same refusals, each a ValueError naming ``source``
+    and the line or column; also more than ``max_rows`` data rows, and a cell of a
+    ``required`` column that is a number but not a finite one (nan, inf)."""
+    return _parse_lines(io.StringIO(text, newline=""), source, required, max_rows,
+                        finite=True)
+
+
+def _parse_lines(lines: Iterable[str], source: str, required: tuple[str, ...],
+                 max_rows: int, *, finite: bool
+                 ) -> tuple[dict[str, str], dict[str, NDArray[np.float64]]]:
+    """The parser of ``read_history`` and ``parse_history`` over the lines of a CSV."""
+    header: dict[str, str] = {}
+    numbered = iter(enumerate(lines, start=1))
+    first: tuple[int, str] | None = None
+    for lineno, line in numbered:
+        if line.startswith("#"):
+            key, _, value = line[1:].partition(":")
+            header[key.strip()] = value.strip()
+        elif line.strip():
+            first = lineno, line
+            break
+    if first is None:
+        raise ValueError(f"{source}: no header row (expected columns {', '.join(required)})")
+    lineno, line = first
+    names = [n.strip() for n in _cells(source, lineno, line)]
+    missing = [c for c in required if c not in names]
+    if missing:
+        raise ValueError(f"{source}, line {lineno}: no column {missing[0]!r} in the header "
+                         f"row (columns: {', '.join(names)})")
+    checked = [i for i, n in enumerate(names) if n in required] if finite else []
+    rows: list[list[float]] = []
+    for lineno, line in numbered:
+        if not line.strip():
+            continue
+        row = _cells(source, lineno, line)
+        if len(row) != len(names):
+            raise ValueError(f"{source}, line {lineno}: {len(row)} values, expected "
+                             f"{len(names)} ({', '.join(names)})")
+        try:
+            values = [float(v) for v in row]
+        except ValueError:
+            bad = next(i for i, v in enumerate(row) if not _is_float(v))
+            raise ValueError(f"{source}, line {lineno}, column {names[bad]!r}: "
+                             f"{row[bad]!r} is not a number") from None
+        for i in checked:
+            if not math.isfinite(values[i]):
+                raise ValueError(f"{source}, line {lineno}, column {names[i]!r}: "
+                                 f"{row[i].strip()!r} is not a finite number")
+        rows.append(values)
+        if len(rows) > max_rows:
+            raise ValueError(f"{source}: more than {max_rows} rows")
     if not rows:
-        raise ValueError(f"{p}: no data rows after the header row")
+        raise ValueError(f"{source}: no data rows after the header row")
     table = np.array(rows, dtype=np.float64)
     return header, {n: table[:, i] for i, n in enumerate(names)}
+
+
+def _cells(source: str, lineno: int, line: str) -> list[str]:
+    """The cells of one CSV line; ValueError naming the line if the csv module refuses
+    it (a field beyond its size limit, a bare carriage return inside a field)."""
+    try:
+        return next(csv.reader([line]))
+    except csv.Error as err:
+        raise ValueError(f"{source}, line {lineno}: not a CSV line ({err})") from None
 
 
 def _is_float(text: str) -> bool:
