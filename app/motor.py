@@ -45,7 +45,6 @@ from bokeh.models import ColumnDataSource, DataRange1d, Label, Range1d
 from panel.io import hold
 
 from app import export
-from app.methods import WORKER, SharedWorker
 from app.scenes import FRAME_LEVEL, fit_range, new_figure, style_figure
 from app.widgets import ERROR_STYLE, ExactSlider
 from app.wire import inline
@@ -81,6 +80,18 @@ THRUST_COLOR, EFFICIENCY_COLOR, ROTOR_COLOR = "#0072B2", "#009E73", "#D55E00"
 INVALID_COLOR = "#999999"
 
 
+from concurrent.futures import ThreadPoolExecutor
+class SharedWorker:
+    def __init__(self, max_queued=16):
+        self._pool = ThreadPoolExecutor(max_workers=1)
+        self._slots = threading.BoundedSemaphore(max_queued)
+    def submit(self, job):
+        if not self._slots.acquire(blocking=False):
+            return None
+        future = self._pool.submit(job)
+        future.add_done_callback(lambda _: self._slots.release())
+        return future
+WORKER = SharedWorker()
 # ------------------------------------------------------------------ inputs and units
 
 @dataclass(frozen=True)

@@ -15,7 +15,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 from bokeh.document import Document
-from bokeh.models import ColorBar, Range1d
+from bokeh.models import Range1d
 
 import app.explorer
 import app.widgets
@@ -633,83 +633,6 @@ def test_invalid_physical_inputs_show_a_message(ex: Explorer) -> None:
     assert ex.state.psi == psi and ex.contact == contact_of(ex)
 
 
-# ----------------------------------------------------------------- methods
-
-
-def test_methods_overlay_holds_what_numerics_computes(ex: Explorer) -> None:
-    numerics = pytest.importorskip("core.numerics")
-    ex.view()
-    ex.methods.card.collapsed = False
-    ex.methods.choice.value = ["mdr"]  # runs synchronously outside a server
-    c = contact_of(ex)
-    res = numerics.solve("mdr", c, numerics.INTERACTIVE_RESOLUTION["mdr"])
-    d = ex.methods.source.data
-    assert d["label"] == ["mdr"]
-    eq(d["xs"][0], res.tau)
-    eq(d["ys"][0], res.T)
-    err = np.max(np.abs(res.T - c.tangential_force(res.tau)))
-    assert f"| mdr | {res.resolution} | {err:.2e} |" in ex.methods.table.object
-    eq(ex.methods.exact.data["T"], c.tangential_force(c.tau_grid(CURVE_POINTS)))
-
-
-def test_methods_run_at_the_resolution_chosen(ex: Explorer) -> None:
-    """MDR at 16 x its interactive default (6400 springs) is what numerics computes at
-    that resolution; the annulus, whose cost grows faster, stops at 128 rings."""
-    numerics = pytest.importorskip("core.numerics")
-    ex.methods.card.collapsed = False
-    ex.methods.resolution.value = 16.0
-    ex.methods.choice.value = ["mdr", "annulus"]
-    c = contact_of(ex)
-    mdr, annulus = ex.methods.results
-    assert (mdr.resolution, annulus.resolution) == (
-        16 * numerics.INTERACTIVE_RESOLUTION["mdr"], 128)
-    eq(mdr.T, numerics.solve("mdr", c, mdr.resolution).T)
-    eq(ex.methods.source.data["ys"][1], numerics.solve("annulus", c, 128).T)
-    assert f"| mdr | {mdr.resolution} |" in ex.methods.table.object
-    ex.methods.resolution.value = 0.25  # a change of resolution runs again
-    assert ex.methods.results[0].resolution == numerics.INTERACTIVE_RESOLUTION["mdr"] // 4
-
-
-def test_methods_rerun_live_after_a_change(ex: Explorer) -> None:
-    pytest.importorskip("core.numerics")
-    ex.methods.card.collapsed = False
-    ex.methods.choice.value = ["lammps_mindlin"]
-    ex.methods.live.value = True
-    ex.psi_slider.value = 0.5
-    assert ex.methods.results[0].T.shape == ex.methods.source.data["ys"][0].shape
-    x = ex.methods.source.data["ys"][0]
-    ex.psi_slider.value = 5.0
-    assert not np.array_equal(ex.methods.source.data["ys"][0][:50], x[:50])
-
-
-def test_methods_computes_nothing_while_collapsed(ex: Explorer) -> None:
-    assert ex.methods.card.collapsed and ex.methods.exact.data["T"] == []
-    ex.psi_slider.value = 5.0
-    assert ex.methods.exact.data["T"] == []
-    ex.methods.card.collapsed = False  # expanding catches up with the parameters
-    c = contact_of(ex)
-    eq(ex.methods.exact.data["T"], c.tangential_force(c.tau_grid(CURVE_POINTS)))
-    # and draws the methods chosen by default, once
-    from app.methods import DEFAULT_METHODS
-
-    assert ex.methods.source.data["label"] == list(DEFAULT_METHODS)
-    ex.psi_slider.value = 0.7
-    c = contact_of(ex)
-    eq(ex.methods.exact.data["T"], c.tangential_force(c.tau_grid(CURVE_POINTS)))
-
-
-def test_missing_numerics_shows_a_note(monkeypatch: pytest.MonkeyPatch) -> None:
-    import app.methods
-
-    monkeypatch.setattr(app.methods, "numerics", None)
-    ex = Explorer()
-    card = ex.methods.view()
-    card.collapsed = False  # built when opened
-    assert "not available" in card.objects[0].object
-    ex.psi_slider.value = 3.0  # the rest still works
-    assert_sources_match_core(ex)
-
-
 # ------------------------------------------------------------------- motor
 
 
@@ -973,78 +896,3 @@ def test_the_view_is_chosen_by_the_url_and_kept_in_it() -> None:
     assert ex.view_name == "" and ex.messages == [
         "view = '<b>x</b>' is unknown (known: present); the full page is shown"]
     assert "&lt;b&gt;" in ex.message.object  # shown as text
-
-
-def results_rows(name: str) -> list[dict]:
-    """The app's results file `name` read with the csv module alone (numbers as floats)."""
-    import csv
-
-    from app.benchmark_charts import RESULTS
-
-    with (RESULTS / name).open(newline="") as fh:
-        rows = list(csv.DictReader(fh))
-    for r in rows:
-        for k, v in r.items():
-            if k not in ("method", "regime"):
-                r[k] = float(v)
-    return rows
-
-
-def test_the_methods_card_serves_the_speed_chart_one_view_at_a_time(ex: Explorer) -> None:
-    """The view picked is drawn from speed_accuracy.csv: per method, each run's median
-    time and worst error over the view's cases, its Pareto front, the closed form's
-    star (recomputed here from the file's rows)."""
-    ex.methods.card.collapsed = False
-    key = "regime: preload | relative error"
-    ex.methods.speed_view.value = key
-    chart = ex.methods.speed_chart
-    rows = [r for r in results_rows("speed_accuracy.csv") if r["regime"] == "preload"]
-    for name in ("mdr", "direnzo", "gauss_legendre"):
-        runs: dict = {}
-        for r in rows:
-            if r["method"] == name:
-                runs.setdefault((r["resolution"], r["steps"]), []).append(r)
-        expected = sorted((float(np.median([r["wall_time"] for r in rs])),
-                           max(max(r["err_rel"] for r in rs), 1e-17)) for rs in runs.values())
-        every, front = chart.sources[name]
-        assert sorted(zip(every.data["x"], every.data["y"], strict=True)) == expected
-        # the front: the runs that no other run beats in both time and error
-        assert list(zip(front.data["x"], front.data["y"], strict=True)) == [
-            (t, e) for t, e in expected
-            if not any(t2 <= t and e2 <= e and (t2, e2) != (t, e) for t2, e2 in expected)]
-    cf = [r for r in rows if r["method"] == "closed_form"]
-    assert chart.closed_form.data["x"] == [float(np.median([r["wall_time"] for r in cf]))]
-    assert chart.closed_form.data["y"] == [max(r["err_rel"] for r in cf)]
-    ex.methods.speed_view.value = "all cases | absolute error"
-    assert max(chart.sources["annulus"][0].data["y"]) == max(
-        r["err"] for r in results_rows("speed_accuracy.csv") if r["method"] == "annulus")
-
-
-def test_the_methods_card_serves_the_stability_map_one_method_at_a_time(ex: Explorer
-                                                                         ) -> None:
-    ex.methods.card.collapsed = False
-    method, quantity = ex.methods.stability_controls
-    source = ex.methods.stability_source
-    rows = results_rows("stability_map.csv")
-    for name, col in (("mdr", "err"), ("textbook", "err"), ("textbook", "rel_err_impulse")):
-        method.value, quantity.value = name, col
-        cells = {(p, t): max(e, 1e-17) for p, t, e in zip(
-            source.data["psi"], source.data["tau0"], source.data["shown"], strict=True)}
-        assert cells == {(r["psi"], r["tau0"]): max(r[col], 1e-17)
-                         for r in rows if r["method"] == name}
-    # the colour scale reaches the worst error of any method (the textbook form's)
-    bar = next(m for m in ex.methods.stability_plot.right if isinstance(m, ColorBar))
-    worst = max(max(r["err"], r["rel_err_impulse"]) for r in rows)
-    assert bar.color_mapper.low == 1e-16 and bar.color_mapper.high >= worst > 1e3
-
-
-def test_every_method_has_its_own_colour_and_marker_in_each_chart() -> None:
-    """The speed chart's peers and checks each get a distinct (colour, marker), and every
-    method of core.numerics has one (the live overlay uses the same colours)."""
-    from app.benchmark_charts import CHECKS, PEERS, STYLE
-    from core.numerics import METHODS
-
-    assert set(STYLE) == set(METHODS) == {*PEERS, *CHECKS}
-    for group in (PEERS, CHECKS):
-        assert len({STYLE[m][0] for m in group}) == len(group)
-        assert len({STYLE[m][1] for m in group}) == len(group)
