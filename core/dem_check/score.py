@@ -86,8 +86,8 @@ def check_history(case: Case, tau: ArrayLike, T: ArrayLike, P: ArrayLike
     back = np.flatnonzero(np.diff(tau) <= 0)
     if back.size:
         i = back[0] + 1
-        raise ValueError(f"tau must increase: tau[{i}] = {tau[i]!r} <= tau[{i - 1}] = "
-                         f"{tau[i - 1]!r}")
+        raise ValueError(f"tau must increase: tau[{i}] = {float(tau[i])!r} <= tau[{i - 1}] = "
+                         f"{float(tau[i - 1])!r}")
     slack = COVER_TOLERANCE * (case.tau_end - case.tau0)
     if tau[0] > case.tau0 + slack or tau[-1] < case.tau_end - slack:
         raise ValueError(f"tau must cover the contact [{case.tau0:.6g}, {case.tau_end:.6g}] "
