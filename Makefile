@@ -70,7 +70,7 @@ bench: venv
 # write benchmarks/results/*.csv): their HTML pages there, and the two CSV files the
 # Methods card shows copied into the app's package data (app/results/).
 bench-charts: venv
-	$(PY) -m app.benchmark_charts benchmarks/results --publish
+	$(PY) -m app.methods.publish benchmarks/results --publish
 
 docker-smoke:
 	bash docker/smoke.sh
