@@ -5,7 +5,11 @@
 #
 # BASE: any Debian-like image with python3 >= 3.12 and its venv module.  The
 # default is the official slim image; docker/smoke.sh passes a local base made
-# with debootstrap (see docs/docker.md).  Runtime settings (PORT,
+# with debootstrap (see docs/docker.md).  BUILD_BASE (default: BASE) is the base
+# of the two build stages only: the same system, whose trust store may hold a
+# build host's extra CA certificates for pip to reach the package index through
+# a TLS-intercepting proxy (docker/build-base.sh).  The image is FROM BASE and
+# takes nothing from the build stages but /opt/venv and /opt/zharii.  Runtime settings (PORT,
 # ALLOWED_ORIGINS, NUM_PROCS, BASIC_AUTH, ADMIN, PANEL_ARGS) are documented in
 # docs/docker.md; docker/compose.yaml runs it read-only behind nginx (docs/deploy.md).
 #
@@ -14,9 +18,10 @@
 # the project is pip-installed in a separate small stage, and the runtime
 # stage puts all its metadata before its two COPY --from steps.
 ARG BASE=python:3.12-slim
+ARG BUILD_BASE=${BASE}
 
 # ---- deps: /opt/venv with the dependencies of the project and its app extra -
-FROM ${BASE} AS deps
+FROM ${BUILD_BASE} AS deps
 ENV PIP_NO_CACHE_DIR=1 \
     PIP_DISABLE_PIP_VERSION_CHECK=1 \
     PIP_ROOT_USER_ACTION=ignore
@@ -37,7 +42,7 @@ RUN python3 -c 'import sys; sys.exit(sys.version_info < (3, 12))' \
     && echo /opt/zharii/lib > "$(/opt/venv/bin/python -c 'import sysconfig; print(sysconfig.get_path("purelib"))')/zharii.pth"
 
 # ---- pkg: the project itself, pip-installed from the build context ----------
-FROM ${BASE} AS pkg
+FROM ${BUILD_BASE} AS pkg
 # The context holds only what .dockerignore lets through: pyproject.toml,
 # README.md, constraints.txt, core/, app/ (with its package data: the benchmark
 # results its Methods scene charts, app/results/) and docker/entrypoint.sh.
