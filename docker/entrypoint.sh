@@ -13,9 +13,11 @@
 #   NUM_PROCS        number of server processes (default 0 = one per CPU available
 #                    to the container: its CPU quota when one is set, e.g. by
 #                    `docker run --cpus` or a compose file's cpus limit)
-#   BASIC_AUTH       password, or a file of user:password lines, required on every
-#                    page (optional); ADMIN=1 also serves Panel's /admin page, which
-#                    app.serve allows only together with BASIC_AUTH
+#   BASIC_AUTH       password, or the path of a JSON file of {"user": "password"}
+#                    (e.g. a mounted secret), required on every page (optional); read
+#                    by app.serve from the environment, never put on its command line.
+#                    ADMIN=1 also serves Panel's /admin page, which app.serve allows
+#                    only together with BASIC_AUTH
 #   PANEL_ARGS       extra arguments appended to `python -m app.serve` (word-split)
 # Arguments given to `docker run IMAGE ...` that start with "-" are appended to
 # `python -m app.serve`; any other command (e.g. `sh`) is run instead of the server.
@@ -76,21 +78,20 @@ if [ -n "$(printf '%s' "$ALLOWED_ORIGINS" | tr -d '[:space:]')" ] && [ -z "$orig
     echo "entrypoint: ALLOWED_ORIGINS lists no origin: '$ALLOWED_ORIGINS'" >&2; exit 64
 fi
 
-auth_args=
-if [ -n "${BASIC_AUTH:-}" ]; then
-    auth_args="--basic-auth=$BASIC_AUTH"
-fi
+# BASIC_AUTH stays in the environment, where app.serve reads it: on the command line
+# the password would be shown to every user of the machine (ps, /proc/PID/cmdline).
+admin_args=
 case ${ADMIN:-} in
     '' | 0 | false | no) ;;
-    *) [ -n "$auth_args" ] || { echo "entrypoint: ADMIN needs BASIC_AUTH (the admin page shows every session)" >&2; exit 64; }
-       auth_args="$auth_args --admin" ;;
+    *) [ -n "${BASIC_AUTH:-}" ] || { echo "entrypoint: ADMIN needs BASIC_AUTH (the admin page shows every session)" >&2; exit 64; }
+       admin_args=--admin ;;
 esac
 
 echo "entrypoint: python -m app.serve on $ADDRESS:$PORT, $NUM_PROCS process(es), websocket origins: ${ALLOWED_ORIGINS:-localhost:$PORT,127.0.0.1:$PORT}" >&2
-# $origin_args, $auth_args and $PANEL_ARGS are split on blanks on purpose (globbing is off).
+# $origin_args, $admin_args and $PANEL_ARGS are split on blanks on purpose (globbing is off).
 # shellcheck disable=SC2086
 exec "$PYTHON" -m app.serve \
     --address "$ADDRESS" --port "$PORT" \
     --num-procs "$NUM_PROCS" \
-    $origin_args $auth_args \
+    $origin_args $admin_args \
     ${PANEL_ARGS:-} "$@"
