@@ -1,6 +1,6 @@
 """The "Check a DEM code" card in Chromium, served alone (`pn.serve`, with the app
 server's websocket message cap): opened, an uploaded CSV is scored and drawn, and a
-malformed one is refused in words under the upload box."""
+malformed one, or one over the card's size cap, is refused in words under the upload box."""
 
 from __future__ import annotations
 
@@ -12,6 +12,7 @@ import panel as pn
 import pytest
 from explorer_browser import free_port, wait_for_http
 
+from app.dem import data
 from app.dem.view import TITLE, DemCard
 from app.serve import SESSION
 from core.dem_check import CASES, exact
@@ -79,6 +80,14 @@ def test_an_uploaded_csv_is_scored_and_drawn(browser, card_url) -> None:
         message = page.get_by_text("your file, line 3, column 'T': 'oops' is not a number")
         message.wait_for(state="visible", timeout=30_000)
         assert not caption.is_visible()
+
+        # over the card's cap, under the server's message cap: refused in words
+        big = b"tau,T,P\n" + b"0" * data.MAX_UPLOAD_BYTES
+        upload.set_input_files(files=[{"name": "big.csv", "mimeType": "text/csv",
+                                       "buffer": big}])
+        page.get_by_text(f"your file has {len(big):,} bytes, more than the "
+                         f"{data.MAX_UPLOAD_BYTES:,} accepted").wait_for(state="visible",
+                                                                          timeout=30_000)
         assert errors == []
     finally:
         page.close()
