@@ -466,28 +466,6 @@ def test_the_traction_phase_is_painted_after_a_typed_tau(browser, url) -> None:
     page.close()
 
 
-def test_the_motor_card_opens_computes_its_curve_and_drives_the_scenes(browser, url) -> None:
-    page, console = open_explorer(browser, url)
-    assert column(page, "motor_thrust", "x_mm") is None  # not built until opened
-    T = column(page, "force", "T")
-    page.get_by_text("Motor: the rod, its thrust and speed (Fig. 1)").click()
-    page.wait_for_function("() => (__col('motor_thrust', 'x_mm') || []).length > 100",
-                           timeout=30_000)
-    # the thrust-speed curve arrives from the background worker
-    page.wait_for_function("() => (__col('motor_speed', 'v') || []).length > 10",
-                           timeout=60_000)
-    T = wait_for_new(page, "force", "T", T)  # the scenes above show the rotor's contact
-    psi = psi_of(page)
-    c = Contact(psi, page.evaluate("() => __slider('tau0').value"),
-                mu=page.evaluate("() => __slider('mu').value"),
-                nu=page.evaluate("() => __slider('nu').value"))
-    np.testing.assert_allclose(T, c.tangential_force(c.tau_grid(CURVE_POINTS)), rtol=1e-12,
-                               atol=1e-15)
-    page.wait_for_function("() => location.search.includes('motor_x0=')", timeout=10_000)
-    assert errors(console) == []
-    page.close()
-
-
 #: JavaScript: the page box of the figure titled `title`.
 JS_FIGURE_BOX = """(title) => {
   const v = __views((v) => v.model != null && v.model.type === "Figure"

@@ -1,0 +1,72 @@
+"""The Motor card in a real browser (Debian's Chromium through Playwright): it opens,
+computes on the runner, drives the scenes above, and paints the rotor on the rod, the
+explanation of the never-opening ends and an efficiency curve resolved to its best."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from explorer_browser import column, open_explorer
+from test_browser import errors, psi_of, wait_for_new
+
+from app.scenes import CURVE_POINTS
+from core import Contact
+from core.motor import Motor, Rod
+
+pytestmark = pytest.mark.browser
+
+CARD = "Motor: the rod, its thrust and speed (Fig. 1)"
+
+
+def opened(browser, url):
+    page, console = open_explorer(browser, url)
+    assert column(page, "motor_thrust", "x_mm") is None  # not built until opened
+    T = column(page, "force", "T")
+    page.get_by_text(CARD).click()
+    page.wait_for_function("() => (__col('motor_thrust', 'x_mm') || []).length > 100",
+                           timeout=30_000)
+    # the thrust-speed curve arrives from the background runner
+    page.wait_for_function("() => (__col('motor_speed', 'v') || []).length > 10",
+                           timeout=60_000)
+    return page, console, T
+
+
+def test_the_motor_card_opens_computes_its_curve_and_drives_the_scenes(browser, url) -> None:
+    page, console, T = opened(browser, url)
+    T = wait_for_new(page, "force", "T", T)  # the scenes above show the rotor's contact
+    psi = psi_of(page)
+    c = Contact(psi, page.evaluate("() => __slider('tau0').value"),
+                mu=page.evaluate("() => __slider('mu').value"),
+                nu=page.evaluate("() => __slider('nu').value"))
+    np.testing.assert_allclose(T, c.tangential_force(c.tau_grid(CURVE_POINTS)), rtol=1e-12,
+                               atol=1e-15)
+    page.wait_for_function("() => location.search.includes('motor_x0=')", timeout=10_000)
+    assert errors(console) == []
+    page.close()
+
+
+def default_motor() -> tuple[Motor, float]:
+    """The card's default state (PZT rod 2L = 40 mm, steel rotor, x0 = -5 mm) in SI."""
+    rod = Rod(half_length=0.02, thickness=0.004, nu_rod=0.31, amplitude=1e-5,
+              frequency=40e3)
+    return Motor(rod, R=0.005, G=79.3e9, nu=0.29, mu=0.2, preload=0.5), -0.005
+
+
+def test_the_rotor_is_painted_on_the_rod_and_the_ends_are_explained(browser, url) -> None:
+    page, console, _ = opened(browser, url)
+    m, x0 = default_motor()
+    k_H = 0.3 * m.rod.thickness / abs(m.rod.vertical_amplitude)
+    top = (0.5 * m.rod.thickness + k_H * float(m.rod.H(x0))) * 1e3
+    y, r = column(page, "motor_rotor", "y"), column(page, "motor_rotor", "radius")
+    assert y[0] - r[0] == pytest.approx(top, rel=1e-12)  # touching the drawn face
+    text = column(page, "motor_ends", "text")
+    assert text == ["contact never opens:\nnormal motion H too small\nfor the preload "
+                    "(Φ ≥ 8)"] * 2
+    painted = page.evaluate("""() => __views((v) => v.model != null
+        && v.model.name === 'motor_ends_text').map((v) => v.model.visible)""")
+    assert painted == [True]
+    eta = np.array(column(page, "motor_speed", "efficiency_pct"), float)
+    best = column(page, "motor_speed_marks", "efficiency_pct")[1]
+    assert np.sum(eta > 0) >= 40 and np.nanmax(eta) == best
+    assert errors(console) == []
+    page.close()
