@@ -6,12 +6,15 @@ from __future__ import annotations
 
 import math
 import shutil
+import subprocess
+import sys
 
 import numpy as np
 import pytest
 
 from app.dem import data
 from app.dem.state import DemState
+from app.serve import SESSION
 from core.dem_check import CASES, exact, lammps, score
 from core.dem_check.vectors import read_history
 
@@ -95,7 +98,6 @@ def test_an_upload_for_another_case_says_what_it_lacks() -> None:
 def test_the_upload_cap_fits_the_servers_websocket_message_cap() -> None:
     """The browser sends the file base64-encoded in one message; app.serve closes a
     connection whose message is larger."""
-    from app.serve import SESSION
     assert 4 * math.ceil(data.MAX_UPLOAD_BYTES / 3) + 16 * 1024 < SESSION[
         "websocket_max_message_size"]
     # and the row cap is reachable under the byte cap
@@ -193,3 +195,11 @@ def test_the_vectors_file_reads_back_with_core_dem_check(tmp_path) -> None:
     header, cols = read_history(f)
     assert header["name"] == "critical"
     np.testing.assert_array_equal(cols["T"], exact(CASES["critical"]).T)
+
+
+def test_the_data_module_loads_neither_bokeh_nor_panel() -> None:
+    code = ("import sys, app.dem.data, app.dem.overlays; "
+            "print(sorted(m for m in sys.modules if m.split('.')[0] in ('bokeh', 'panel')))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "[]"
