@@ -3,20 +3,30 @@
 In the browser: markup and script payloads in every query parameter run nothing,
 inject no element and are shown literally.  Over HTTP and the websocket: every page
 carries a nonce-based Content-Security-Policy, a foreign Origin's websocket upgrade
-gets 403, and oversized or malformed websocket messages close only their connection.
+gets 403, oversized or malformed websocket messages close only their connection, a
+client that stops half-way through a frame is disconnected within a bound while an
+idle one that answers pings stays, and Bokeh's autoload script (which would echo its
+parameter into JavaScript) answers 404.  The basic-auth password is read from the
+environment and never appears on the server's command line.
 """
 
 from __future__ import annotations
 
 import asyncio
 import json
+import os
 import re
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.error
 import urllib.request
 from concurrent.futures import ThreadPoolExecutor
 from urllib.parse import urlencode, urlsplit
 
 import pytest
-from explorer_browser import JS_READY
+from explorer_browser import JS_READY, ROOT, free_port, wait_for_http
 from tornado.httpclient import HTTPClientError, HTTPRequest
 from tornado.websocket import WebSocketClosedError, websocket_connect
 
@@ -227,3 +237,140 @@ def test_a_message_over_the_size_cap_closes_only_its_connection(url) -> None:
     assert at_cap == ("SERVER-INFO-REPLY", None)
     assert over == "closed" and code in (1009, None), (over, code)
     assert reply == "SERVER-INFO-REPLY"
+
+
+#: A marker that must never come back from the server, in the autoload parameter.
+AUTOLOAD_PROBE = "x'</script><script>alert('autoload-probe')</script>"
+
+
+@pytest.mark.parametrize("path", ["/autoload.js", "/autoload_js"])
+def test_the_autoload_script_is_not_served(url, path) -> None:
+    """Bokeh's autoload endpoint writes its bokeh-autoload-element parameter, unescaped,
+    into JavaScript served from the app's origin; the app never uses it and answers 404
+    with an empty body (also for "autoload_js": Bokeh's route is a regex with an
+    unescaped dot)."""
+    query = urlencode({"bokeh-autoload-element": AUTOLOAD_PROBE, "bokeh-app-path": "/main"})
+    try:
+        with urllib.request.urlopen(f"{url}{path}?{query}", timeout=60) as r:
+            status, body = r.status, r.read()
+    except urllib.error.HTTPError as err:
+        status, body = err.code, err.read()
+    assert status == 404, (status, body[:200])
+    assert b"autoload-probe" not in body and body == b""
+
+
+def _bound() -> float:
+    """Seconds within which a client that answers no ping is dropped: Tornado pings after
+    an interval, closes after a timeout without the pong, aborts 5 s after its close."""
+    return SESSION["websocket_ping_interval"] + SESSION["websocket_ping_timeout"] + 5
+
+
+async def _raw_websocket(url: str) -> tuple[asyncio.StreamReader, asyncio.StreamWriter]:
+    """A websocket to the page's own session opened by hand (no ping answered, ever)."""
+    parts = urlsplit(url)
+    reader, writer = await asyncio.open_connection(parts.hostname, parts.port)
+    token = _session_token(url)
+    writer.write((f"GET {parts.path}/ws HTTP/1.1\r\nHost: {parts.netloc}\r\n"
+                  "Connection: Upgrade\r\nUpgrade: websocket\r\nSec-WebSocket-Version: 13\r\n"
+                  "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n"
+                  f"Origin: http://{parts.netloc}\r\n"
+                  f"Sec-WebSocket-Protocol: bokeh, {token}\r\n\r\n").encode())
+    await writer.drain()
+    head = await asyncio.wait_for(reader.readuntil(b"\r\n\r\n"), 30)
+    assert head.startswith(b"HTTP/1.1 101"), head[:100]
+    return reader, writer
+
+
+def test_a_half_sent_frame_is_disconnected_within_the_bound(url) -> None:
+    """A client that sends the first 10 bytes of a 100-byte frame and stops can answer no
+    ping: the server closes its connection within the bound (<= 30 s).  A client idle as
+    long that answers pings (Tornado's, reading what it is sent, like a browser) is still
+    served afterwards."""
+    bound = _bound()
+    assert bound <= 30
+
+    async def drain(conn) -> None:
+        # Tornado's client answers pings only while its messages are read
+        while await conn.read_message() is not None:
+            pass
+
+    async def scenario() -> tuple[float, str]:
+        idle = await _connect(url)
+        reading = asyncio.ensure_future(drain(idle))
+        reader, writer = await _raw_websocket(url)
+        mask = b"\x01\x02\x03\x04"
+        writer.write(bytes([0x81, 0x80 | 100]) + mask + b"x" * 10)  # FIN text, masked, len 100
+        await writer.drain()
+        t0 = time.monotonic()
+        deadline, closed = t0 + bound + 15, False
+        while not closed and time.monotonic() < deadline:
+            try:  # the session's messages and the server's pings, until the end
+                data = await asyncio.wait_for(reader.read(65536), deadline - time.monotonic())
+            except TimeoutError:
+                break
+            except ConnectionError:
+                data = b""
+            closed = not data
+        elapsed = time.monotonic() - t0
+        writer.close()
+        assert closed, f"the half-sent frame's connection is still open after {elapsed:.1f} s"
+        reading.cancel()
+        reply = await _server_info(idle)  # the idle client that answers pings: still served
+        idle.close()
+        return elapsed, reply
+
+    elapsed, reply = run(scenario())
+    assert elapsed <= bound + 2, f"closed after {elapsed:.1f} s, bound {bound} s"
+    assert reply == "SERVER-INFO-REPLY"
+
+
+def test_the_password_is_read_from_the_environment_never_from_argv(tmp_path) -> None:
+    """BASIC_AUTH (a password with blanks) reaches the server through its environment:
+    the pages ask for the login, the password logs in, and no process's command line
+    (what ps shows every user) holds it.  --basic-auth on a command line is refused."""
+    password = "correct horse battery staple"
+    port = free_port()
+    env = {**os.environ, "BASIC_AUTH": password}
+    log = tempfile.TemporaryFile("w+")
+    proc = subprocess.Popen([sys.executable, "-m", "app.serve", "--port", str(port), "--admin"],
+                            cwd=ROOT, env=env, stdout=log, stderr=subprocess.STDOUT)
+    base = f"http://127.0.0.1:{port}"
+    try:
+        wait_for_http(f"{base}/liveness", 90)
+        cmdline = open(f"/proc/{proc.pid}/cmdline", "rb").read().decode()
+        assert "--port" in cmdline and "horse" not in cmdline, cmdline
+
+        class NoRedirect(urllib.request.HTTPRedirectHandler):
+            def redirect_request(self, *args, **kwargs):
+                return None
+
+        opener = urllib.request.build_opener(NoRedirect)
+        with pytest.raises(urllib.error.HTTPError) as anonymous:
+            opener.open(f"{base}/main", timeout=60)
+        assert anonymous.value.code == 302
+        assert "login" in anonymous.value.headers["Location"]
+
+        def login(pw: str) -> str:
+            """The session cookie the login sets for `pw` ("" if refused)."""
+            data = urlencode({"username": "teacher", "password": pw}).encode()
+            try:
+                opener.open(f"{base}/login", data=data, timeout=60)
+            except urllib.error.HTTPError as err:
+                cookies = err.headers.get_all("Set-Cookie") or []
+                return "; ".join(c.split(";")[0] for c in cookies if c.startswith("user="))
+            return ""
+
+        assert login("correct") == ""
+        cookie = login(password)
+        assert cookie
+        req = urllib.request.Request(f"{base}/main", headers={"Cookie": cookie})
+        with opener.open(req, timeout=60) as r:
+            assert r.status == 200 and b"Bokeh" in r.read()
+    finally:
+        proc.terminate()
+        proc.wait(30)
+        log.close()
+    refused = subprocess.run([sys.executable, "-m", "app.serve", "--basic-auth", password],
+                             cwd=ROOT, capture_output=True, text=True, timeout=60)
+    assert refused.returncode == 2 and "BASIC_AUTH" in refused.stderr
+    assert "horse" not in refused.stderr
