@@ -41,8 +41,8 @@ from app.benchmark_charts import (
     stability_data,
     stability_figure,
 )
-from app.scenes import CURVE_POINTS, fit_range, new_figure, style_figure
-from app.widgets import LabelledCheckbox
+from app.contact.scenes import CURVE_POINTS, fit_range, new_figure, style_figure
+from app.kit.widgets import LabelledCheckbox
 from core import Contact
 
 try:

@@ -11,7 +11,7 @@
    `no_load_speed`, `best_efficiency`), computed on the shared worker thread of
    `app.methods` with a progress bar, so a slider never waits for them, and cached
    (bounded `lru_cache` on the rounded contact);
-4. CSV downloads of both curves, in the explorer's style (`app.export`): a header block
+4. CSV downloads of both curves, in the explorer's style (`app.contact.export`): a header block
    with the source, the app's version and the inputs in SI, columns named with their
    units, file names carrying the inputs.
 
@@ -44,11 +44,11 @@ from bokeh.events import Tap
 from bokeh.models import ColumnDataSource, DataRange1d, Label, Range1d
 from panel.io import hold
 
-from app import export
+from app.contact import export
+from app.contact.scenes import FRAME_LEVEL, fit_range, new_figure, style_figure
+from app.kit.widgets import ERROR_STYLE, ExactSlider
+from app.kit.wire import inline
 from app.methods import WORKER, SharedWorker
-from app.scenes import FRAME_LEVEL, fit_range, new_figure, style_figure
-from app.widgets import ERROR_STYLE, ExactSlider
-from app.wire import inline
 from core.motor import (
     BestEfficiency,
     Motor,
@@ -806,7 +806,7 @@ class MotorScene(pn.viewable.Viewer):
     def csv_table(self, key: str) -> dict[str, np.ndarray]:
         """The columns of CSV 'thrust' (the rod, on the points of the stall-thrust plot:
         x0, drive, psi, Phi, tau0, stall thrust) or 'speed' (the thrust-speed curve at x0,
-        dimensionless then SI; no rows where there is none), named as `app.export.COLUMNS`
+        dimensionless then SI; no rows where there is none), named as `app.contact.export.COLUMNS`
         names them."""
         if key == "thrust":
             p = self.profile
@@ -840,7 +840,7 @@ class MotorScene(pn.viewable.Viewer):
             return None
 
     def csv_header(self, key: str) -> list[str]:
-        """The comment lines of CSV `key` (`app.export.comments`): the rod's and the
+        """The comment lines of CSV `key` (`app.contact.export.comments`): the rod's and the
         rotor's inputs in SI (the floats core computed with), and for 'speed' x0 and the
         contact there."""
         m = self.motor
@@ -868,12 +868,12 @@ class MotorScene(pn.viewable.Viewer):
 
     def csv_text(self, key: str) -> str:
         """CSV of 'thrust' or 'speed' (`csv_table`) in the explorer's style
-        (`app.export.csv_text`): the header block, the column names with units, the rows
+        (`app.contact.export.csv_text`): the header block, the column names with units, the rows
         to 10 significant digits."""
         return export.csv_text(self.csv_table(key), self.csv_header(key))
 
     def csv_filename(self, key: str) -> str:
-        """The CSV's file name (`app.export.named`): what it holds and the inputs in
+        """The CSV's file name (`app.contact.export.named`): what it holds and the inputs in
         display units (to 6 significant digits), x0 for the curve at x0."""
         names = (*ROD_FIELDS, *ROTOR_FIELDS, *(("x0",) if key == "speed" else ()))
         return export.named(f"motor_{key}", [

@@ -13,30 +13,56 @@ A `panel serve app/main.py` with the settings a deployment needs fixed in one pl
   ``localhost:PORT`` and ``127.0.0.1:PORT``).  ``*`` must be asked for and is logged.
 - **Session lifetimes** (see ``SESSION``): a page load whose websocket never connects
   (a link preview, a crawler) is discarded after 20 s; connections are pinged every
-  10 s so that proxies keep idle classroom sessions open.
+  10 s so that proxies keep idle classroom sessions open; one that answers no ping for
+  10 s (e.g. a client stopped half-way through a frame) is closed.
+- **Signed session ids** (``BOKEH_SECRET_KEY``, else a key drawn at start): a websocket
+  or a page request naming a session id this server did not issue is refused, so no
+  client can have documents built without loading a page.
 - **Message size cap**: a client's websocket message above 512 KiB closes its
   connection (the explorer's own messages are a few hundred bytes).
-- **No admin page** unless ``--admin``, and then only behind HTTP basic auth
-  (``--basic-auth``: a password, or a file holding user:password lines).
+- **No autoload script**: Bokeh's ``/main/autoload.js`` (embedding in other sites'
+  pages) answers 404.
+- **No admin page** unless ``--admin``, and then only behind a login: the password in
+  the environment (``BASIC_AUTH``: a password, or the path of a JSON file of user names
+  to passwords) or ``--basic-auth-file PATH``, never on the command line.
 
-The security headers are a Tornado output transform (``tornado.web.OutputTransform``,
-passed to the Tornado application through Bokeh's ``Server`` keyword arguments).
+The security headers and the autoload refusal are Tornado output transforms
+(``tornado.web.OutputTransform``, passed to the Tornado application through Bokeh's
+``Server`` keyword arguments); the websocket pings' settings are Tornado application
+settings passed the same way.
 """
 
 from __future__ import annotations
 
 import argparse
 import gc
+import json
 import logging
+import os
 import re
 import secrets
+import subprocess
 import sys
 import threading
+import time
 from pathlib import Path
 
 from tornado.web import GZipContentEncoding, OutputTransform
 
 MAIN = Path(__file__).with_name("main.py")
+
+#: The environment variable holding the key session ids are signed with (Bokeh's own
+#: name; at least 32 characters).  Unset, a key is drawn at start: every process of one
+#: `--num-procs` server shares it; replicas behind a proxy need the same one only if a
+#: page's websocket may reach another replica than its page (sticky sessions: not).
+SECRET_KEY_ENV = "BOKEH_SECRET_KEY"
+
+#: What loading the closed form's kernels takes on a fresh machine (they compile), s.
+COMPILE_SECONDS = 20
+
+#: How long the server waits, once the closed form is loaded, for the process loading
+#: the Methods and Motor kernels (s): with numba's cache filled it is done by then.
+METHODS_WAIT_S = 4.0
 
 #: Session lifetimes and limits, in the units Bokeh's `Server` takes.
 SESSION = {
@@ -48,6 +74,12 @@ SESSION = {
     "keep_alive_milliseconds": 10_000,
     # a client's message above this closes its connection
     "websocket_max_message_size": 512 * 1024,
+    # Tornado's own pings (application settings, in seconds): a connection that has not
+    # answered a ping within the timeout is closed, and dropped 5 s later if the client
+    # does not answer the close either; a client that sends half a frame and stops can
+    # answer nothing, so it is disconnected within interval + timeout + 5 = 25 s
+    "websocket_ping_interval": 10,
+    "websocket_ping_timeout": 10,
 }
 
 #: The Content-Security-Policy of every HTML page; {nonce} is fresh per response.
@@ -88,6 +120,61 @@ class SecurityHeaders(OutputTransform):
         return status_code, headers, chunk
 
 
+#: Bokeh's route of an app's autoload script (its pattern: "." matches any character).
+_AUTOLOAD = re.compile(r"/autoload.js$")
+
+
+class NoAutoload(OutputTransform):
+    """Answers 404 with an empty body in place of Bokeh's ``/<app>/autoload.js``.
+
+    That endpoint embeds a session in another site's page and writes its
+    ``bokeh-autoload-element`` parameter, unescaped, into the JavaScript it serves from
+    this origin; the explorer is served as a whole page and never uses it.  Bokeh's own
+    routes come before any given to its ``Server`` (``extra_patterns``), so the
+    response is refused here.
+    """
+
+    def __init__(self, request):
+        super().__init__(request)
+        self.refused = bool(_AUTOLOAD.search(request.path))
+
+    def transform_first_chunk(self, status_code, headers, chunk, finishing):
+        if not self.refused:
+            return status_code, headers, chunk
+        for name in ("Etag", "Access-Control-Allow-Origin", "Access-Control-Allow-Headers",
+                     "Access-Control-Allow-Methods"):
+            headers.pop(name, None)
+        headers["Content-Type"] = "text/plain; charset=UTF-8"
+        headers["Content-Length"] = "0"
+        return 404, headers, b""
+
+    def transform_chunk(self, chunk, finishing):
+        return b"" if self.refused else chunk
+
+
+def basic_auth(p: argparse.ArgumentParser, path: str | None, env: str | None) -> str | None:
+    """Panel's ``basic_auth`` from ``--basic-auth-file`` or ``BASIC_AUTH``, checked.
+
+    ``BASIC_AUTH`` is a password, or the path of a file (an absolute path naming no file
+    is refused, rather than taken for the password); the file holds a JSON object of
+    user names to passwords, as Panel reads it at each login.
+    """
+    if path and env:
+        p.error("give either BASIC_AUTH or --basic-auth-file, not both")
+    if not path and env and env.startswith("/"):
+        path = env
+    if not path:
+        return env or None
+    try:
+        users = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, ValueError) as err:
+        p.error(f"basic auth file {path}: {err.__class__.__name__}: not a readable JSON file")
+    if not (isinstance(users, dict) and users
+            and all(isinstance(v, str) and v for v in users.values())):
+        p.error(f"basic auth file {path}: not a JSON object of user names to passwords")
+    return path
+
+
 def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     """The command line (see the module docstring)."""
     p = argparse.ArgumentParser(prog="python -m app.serve", description=__doc__.split("\n")[0])
@@ -102,12 +189,19 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
                         "localhost:PORT and 127.0.0.1:PORT; '*' allows any (opt-in)")
     p.add_argument("--prefix", default="", help="URL prefix, e.g. /explorer")
     p.add_argument("--admin", action="store_true",
-                   help="serve Panel's /admin page (requires --basic-auth)")
-    p.add_argument("--basic-auth", default=None,
-                   help="password, or file of user:password lines, for every page")
+                   help="serve Panel's /admin page (requires BASIC_AUTH or --basic-auth-file)")
+    p.add_argument("--basic-auth-file", default=None, metavar="PATH",
+                   help="JSON file of {user: password} asked for on every page; or set "
+                        "BASIC_AUTH in the environment to a password or such a file's path")
+    # refused: a password on a command line is shown to every user of the machine (ps)
+    p.add_argument("--basic-auth", default=None, help=argparse.SUPPRESS)
     args = p.parse_args(argv)
+    if args.basic_auth is not None:
+        p.error("--basic-auth would show the password to every user of the machine (ps): "
+                "set BASIC_AUTH in the environment or use --basic-auth-file")
+    args.basic_auth = basic_auth(p, args.basic_auth_file, os.environ.get("BASIC_AUTH"))
     if args.admin and not args.basic_auth:
-        p.error("--admin needs --basic-auth: the admin page shows every session")
+        p.error("--admin needs BASIC_AUTH or --basic-auth-file: the admin page shows every session")
     if args.num_procs < 0:
         p.error("--num-procs must be >= 0")
     if not args.allow_websocket_origin:
@@ -121,11 +215,15 @@ def server_options(args: argparse.Namespace) -> dict:
         port=args.port, address=args.address, num_procs=args.num_procs,
         websocket_origin=args.allow_websocket_origin, prefix=args.prefix,
         liveness=True, index=None, admin=args.admin,
-        transforms=[SecurityHeaders, GZipContentEncoding],
+        transforms=[NoAutoload, SecurityHeaders, GZipContentEncoding],
         **SESSION,
     )
     if args.basic_auth:
         opts.update(basic_auth=args.basic_auth, cookie_secret=secrets.token_urlsafe(32))
+    # session ids signed with this deployment's key: a websocket or a page request naming
+    # a session id the server did not issue is refused before any document is built
+    opts.update(sign_sessions=True, generate_session_ids=True,
+                secret_key=(os.environ.get(SECRET_KEY_ENV) or secrets.token_urlsafe(32)).encode())
     return opts
 
 
@@ -133,22 +231,48 @@ def main(argv: list[str] | None = None) -> None:
     """Serve the explorer at /main (and / redirecting there) until interrupted."""
     from panel.io.server import get_server
 
-    from core.warm import warm_all
+    from core.warm import warm, warm_methods
 
     args = parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(levelname)s %(message)s")
     log = logging.getLogger("app.serve")
     if "*" in args.allow_websocket_origin:
         log.warning("websocket origin '*': any web page may open sessions on this server")
-    import app.explorer  # noqa: F401  (what every session's script imports)
+    # the Methods and Motor cards' kernels: compiled into numba's disk cache by another
+    # process (numba holds the GIL while it compiles: in this one, it would stall pages)
+    methods = subprocess.Popen([sys.executable, "-m", "core.warm", "methods"],
+                               stdin=subprocess.DEVNULL, stdout=subprocess.PIPE)
+    # the closed form, which every page runs: loaded (compiled on a fresh machine) before
+    # the first page is taken, so that it is not built behind the compiler
+    log.info("loading the closed form's compiled kernels (a first run compiles them: "
+             "~%d s on 2 cores)...", COMPILE_SECONDS)
+    started = time.perf_counter()
+    warm()
+    from bokeh.document import Document
+
+    import app.page.explorer  # (what every session's script imports)
+
+    # one page built and dropped: what a first page would do once (Panel's and Bokeh's
+    # lazy imports and caches) is done before a visitor waits for it
+    app.page.explorer.Explorer().view().get_root(Document())
+    log.info("closed form and a page ready in %.1f s", time.perf_counter() - started)
+    try:  # with a warm cache they are loaded in a second or two: before the address
+        methods.wait(timeout=METHODS_WAIT_S)
+        warm_methods()  # (from the cache: ~0.5 s holding the GIL, before any page)
+    except subprocess.TimeoutExpired:
+        log.info("the Methods and Motor cards' kernels compile in the background")
+
+        def load_methods() -> None:  # from the cache the other process fills: ~0.5 s
+            methods.stdout.read()  # (EOF when it ends, in every server process)
+            methods.poll()  # (reaped, where this process started it)
+            warm_methods()
+
+        threading.Thread(target=load_methods, name="warm-methods", daemon=True).start()
     gc.freeze()  # the modules' objects: out of every later garbage collection's walk
     server = get_server({"main": str(MAIN)}, start=False, **server_options(args))
+    server.start()
     log.info("explorer at http://%s:%d%s/main (websocket origins: %s)", args.address,
              args.port, args.prefix, ", ".join(args.allow_websocket_origin))
-    server.start()
-    # load the compiled kernels (core.warm: the closed form first, then the Methods and
-    # Motor cards' methods) without delaying the first page
-    threading.Thread(target=warm_all, name="warm-kernels", daemon=True).start()
     server.io_loop.start()
 
 

@@ -17,17 +17,17 @@ import pytest
 from bokeh.document import Document
 from bokeh.models import ColorBar, Range1d
 
-import app.explorer
-import app.widgets
-from app import spheres
-from app.explorer import CONTACT_SECONDS, Explorer
-from app.formulas import formulas
-from app.notes import NOTES
-from app.phases import STYLES
-from app.player import frame_index, frame_taus
-from app.readout import CAPTION, table_html
-from app.scenes import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
-from app.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
+import app.kit.widgets
+import app.page.explorer
+from app.contact import spheres
+from app.contact.formulas import formulas
+from app.contact.notes import NOTES
+from app.contact.phases import STYLES
+from app.contact.player import frame_index, frame_taus
+from app.contact.readout import CAPTION, table_html
+from app.contact.scenes import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
+from app.contact.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
+from app.page.explorer import CONTACT_SECONDS, Explorer
 from core import PHASE_NAMES, Contact, Phase, impulse_ratio
 
 eq = np.testing.assert_array_equal
@@ -495,7 +495,7 @@ def test_step_button_and_play_toggle(ex: Explorer, monkeypatch) -> None:
     progress, started, _ = ex._play_start
     assert progress == 0.0
     now = [started]
-    monkeypatch.setattr(app.explorer.time, "monotonic", lambda: now[0])
+    monkeypatch.setattr(app.page.explorer.time, "monotonic", lambda: now[0])
     # the browser's player shows the frames; the server follows its clock (the state
     # keeps the tau the play started from), and a change made while playing goes on
     # from the player's place in the contact

@@ -13,10 +13,10 @@ import pandas as pd
 import pytest
 from explorer_browser import wait_until
 
-from app.explorer import Explorer
-from app.player import frame_taus
-from app.scenes import CURVE_POINTS, PROFILE_POINTS, ImpulseScene
-from app.state import SQRT2_1
+from app.contact.player import frame_taus
+from app.contact.scenes import CURVE_POINTS, PROFILE_POINTS, ImpulseScene
+from app.contact.state import SQRT2_1
+from app.page.explorer import Explorer
 from core import Contact, impulse_ratio
 
 #: 10 significant digits are written: a value read back is within half a unit of the

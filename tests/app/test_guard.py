@@ -1,4 +1,4 @@
-"""No link, typed value or client message blanks a page or breaks a session (`app.guard`).
+"""No link, typed value or client message blanks a page or breaks a session (`app.page.guard`).
 
 In process: whole-page builds over every query key the app reads (the explorer's, the SI
 inputs', the motor's, the view) with extreme, non-finite, huge-integer, empty and
@@ -19,11 +19,12 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from test_sessions import served  # noqa: F401 (the fixture)
 
-from app.explorer import Explorer
-from app.guard import SafeLocation, build_page, quoted
+import app.page.guard
+from app.contact.state import QUERY_KEYS, parse_query
 from app.motor import QUERY_KEYS as MOTOR_KEYS
 from app.motor import MotorScene
-from app.state import QUERY_KEYS, parse_query
+from app.page.explorer import Explorer
+from app.page.guard import BuildLimit, SafeLocation, build_page, quoted
 
 #: The links of issue 22 that answered an empty page, and their neighbours.
 BAD_LINKS = [
@@ -61,7 +62,7 @@ def assert_page(explorer: Explorer, page) -> None:
     root = page.get_root(Document())
     assert root is not None
     explorer.state.contact()  # (raises if the state is not a contact)
-    values, messages = parse_query(explorer.state.query())
+    _, messages = parse_query(explorer.state.query())
     assert not messages, messages
     if explorer.motor is not None:
         probe = MotorScene()
@@ -143,3 +144,50 @@ def test_served_links_build_the_explorer(served, link: str) -> None:  # noqa: F8
     names = {m.name for m in doc.roots}
     assert "location" in names
     assert len(doc.roots) >= 2, names
+
+
+class Clock:
+    def __init__(self) -> None:
+        self.now = 0.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+def test_a_client_has_its_burst_then_its_rate_and_others_are_unaffected() -> None:
+    clock = Clock()
+    limit = BuildLimit(burst=3, rate=0.5, clock=clock)
+    assert [limit.allow("a") for _ in range(4)] == [True, True, True, False]
+    assert limit.allow("b")  # another address has its own bucket
+    assert limit.retry_after("a") == pytest.approx(2.0)
+    clock.now = 1.9
+    assert not limit.allow("a")
+    clock.now = 2.1
+    assert limit.allow("a") and not limit.allow("a")
+    clock.now = 100.0  # refilled to the burst, not beyond
+    assert [limit.allow("a") for _ in range(4)] == [True, True, True, False]
+
+
+def test_the_limit_forgets_idle_clients_and_stays_bounded() -> None:
+    clock = Clock()
+    limit = BuildLimit(burst=2, rate=1.0, clients=10, clock=clock)
+    for i in range(10):
+        limit.allow(f"c{i}")
+    clock.now = 5.0  # every bucket full again: forgettable
+    for i in range(10, 100):
+        limit.allow(f"c{i}")
+    assert len(limit._buckets) <= 10
+
+
+def test_a_client_past_its_page_builds_gets_the_short_page(served, monkeypatch) -> None:  # noqa: F811
+    url, server = served
+    monkeypatch.setattr(app.page.guard, "BUILDS", BuildLimit(burst=2, rate=1e-6))
+    texts = []
+    for _ in range(3):
+        before = {s.id for s in server.get_sessions("/main")}
+        with urllib.request.urlopen(url) as r:
+            assert r.status == 200
+        (new,) = [s for s in server.get_sessions("/main") if s.id not in before]
+        texts.append(" ".join(str(getattr(m, "text", "")) for m in new.document.models))
+    assert "Too many pages" not in texts[0] and "Too many pages" not in texts[1]
+    assert "Too many pages were opened from your network" in texts[2]

@@ -17,9 +17,9 @@ import pytest
 from explorer_browser import open_explorer
 
 import core
-from app.explorer import Explorer
-from app.physical_inputs import FIELDS, REFUSED, box_text, display, to_si, to_user, warning
-from app.state import SI_KEYS, parse_query
+from app.contact.physical_inputs import FIELDS, REFUSED, box_text, display, to_si, to_user, warning
+from app.contact.state import SI_KEYS, parse_query
+from app.page.explorer import Explorer
 from core import DOMAIN, MATERIALS, Contact
 
 #: The SI value of one box unit: mm, GPa, µm, and kHz of f in rad/s.

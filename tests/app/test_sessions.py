@@ -23,14 +23,15 @@ from test_security import _connect, _server_info
 from tornado.httpclient import AsyncHTTPClient
 from tornado.ioloop import IOLoop
 
-from app.explorer import Explorer
+from app.contact.state import ExplorerState
 from app.methods import MethodsScene
+from app.page.explorer import Explorer
 from app.serve import MAIN, server_options
-from app.state import ExplorerState
 
 ROOT = Path(__file__).resolve().parents[2]
 
 LIFETIME_MS = 1500  # unused sessions are discarded after this (app/serve.py: 20 s)
+SECRET_KEY = b"a-test-key-of-at-least-thirty-two-characters"  # signs the session ids
 
 
 @pytest.fixture(scope="module")
@@ -41,7 +42,7 @@ def served():
                                     allow_websocket_origin=[f"127.0.0.1:{port}"], prefix="",
                                     admin=False, basic_auth=None))
     opts.update(unused_session_lifetime_milliseconds=LIFETIME_MS,
-                check_unused_sessions_milliseconds=300)
+                check_unused_sessions_milliseconds=300, secret_key=SECRET_KEY)
     box: dict = {}
 
     def run() -> None:
@@ -195,11 +196,40 @@ def test_a_session_built_for_its_websocket_alone_has_the_servers_stylesheets(ser
 
     async def pull() -> str:
         session = Session(url, AsyncHTTPClient(), 10.0, None)
-        try:  # a session no page was made for
-            return await session.pull(generate_jwt_token(generate_session_id()))
+        try:  # a session no page was made for (its id signed with the server's key)
+            return await session.pull(generate_jwt_token(
+                generate_session_id(SECRET_KEY, signed=True), SECRET_KEY, signed=True))
         finally:
             session.close()
 
     doc = asyncio.run(pull())
     assert "cdn.holoviz.org" not in doc
     assert "static/extensions/panel/css/listpanel.css" in doc
+
+
+@pytest.mark.parametrize("signed_with", [None, b"another-key-of-at-least-thirty-two-chars"])
+def test_a_session_id_the_server_did_not_issue_is_refused(served, signed_with) -> None:
+    """A websocket naming an invented session id (unsigned, or signed with another key)
+    is closed before any document is built: no client can have documents built without
+    loading a page (before, 200 of 200 invented ids each built one)."""
+    url, server = served
+    from bokeh.util.token import generate_jwt_token, generate_session_id
+
+    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
+    from load_test import Session
+
+    signed = signed_with is not None
+    token = generate_jwt_token(generate_session_id(signed_with, signed=signed),
+                               signed_with, signed=signed)
+    before = len(server.get_sessions("/main"))
+
+    async def pull() -> str:
+        session = Session(url, AsyncHTTPClient(), 10.0, None)
+        try:
+            return await session.pull(token)
+        finally:
+            session.close()
+
+    with pytest.raises(Exception):  # noqa: B017 (closed or refused, as the client sees it)
+        asyncio.run(pull())
+    assert len(server.get_sessions("/main")) == before

@@ -9,8 +9,8 @@ from bokeh.document import Document
 from bokeh.models import ColumnDataSource
 from bokeh.protocol import Protocol
 
-from app.explorer import Explorer
-from app.wire import InlineColumn, inline
+from app.kit.wire import InlineColumn, inline
+from app.page.explorer import Explorer
 
 #: Values that a lossy or text encoding would change.
 AWKWARD = np.array([0.1, -0.0, 5e-324, 1.7976931348623157e308, np.nan, np.inf, -np.inf,

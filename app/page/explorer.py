@@ -1,4 +1,4 @@
-"""The explorer: controls and scenes assembled into one page (`app.layout`).
+"""The explorer: controls and scenes assembled into one page (`app.page.layout`).
 
 `Explorer`, a `param.Parameterized` controller, shows an `ExplorerState` (what the user
 set) in the scenes (what is shown).  One handler, `show_state`, depends on every input of
@@ -9,7 +9,7 @@ must correct first (psi and tau0 derived from SI inputs, tau clamped into the co
 it corrects and leaves the showing to the call that correction makes.  So no change is
 ever hidden from it and none is shown twice.  All changes of one step are sent to the
 browser in one message (`panel.io.hold`).  The animation is played by the browser from
-frames computed here (`app.player`), which moves the tau box, the slider and the
+frames computed here (`app.contact.player`), which moves the tau box, the slider and the
 formulas with the plots; the server follows the player's clock.
 """
 
@@ -30,18 +30,14 @@ from panel.io import hold
 from panel.io.location import Location
 from panel.io.resources import get_dist_path
 
-from app import export, layout, presentation
-from app.formulas import formulas
-from app.methods import MethodsScene
-from app.motor import FIELDS as MOTOR_FIELDS
-from app.motor import PREFIX as MOTOR_PREFIX
-from app.motor import MotorScene
-from app.multiples import SmallMultiples
-from app.notes import NOTES
-from app.physical_inputs import PhysicalInputs
-from app.player import Player, frame_index, frame_taus
-from app.readout import Readout
-from app.scenes import (
+from app.contact import export
+from app.contact.formulas import formulas
+from app.contact.multiples import SmallMultiples
+from app.contact.notes import NOTES
+from app.contact.physical_inputs import PhysicalInputs
+from app.contact.player import Player, frame_index, frame_taus
+from app.contact.readout import Readout
+from app.contact.scenes import (
     DiscScene,
     ForceScene,
     ImpulseScene,
@@ -50,8 +46,8 @@ from app.scenes import (
     Scene,
     TractionScene,
 )
-from app.spheres import SpheresScene
-from app.state import (
+from app.contact.spheres import SpheresScene
+from app.contact.state import (
     PRESETS,
     SI_KEYS,
     ExplorerState,
@@ -60,7 +56,12 @@ from app.state import (
     parse_value,
     query_value,
 )
-from app.widgets import ExactSlider, LabelledCheckbox, LabelledSlider, bind, follow
+from app.kit.widgets import ExactSlider, LabelledCheckbox, LabelledSlider, bind, follow
+from app.methods import MethodsScene
+from app.motor import FIELDS as MOTOR_FIELDS
+from app.motor import PREFIX as MOTOR_PREFIX
+from app.motor import MotorScene
+from app.page import layout, presentation
 from core import Contact
 
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
@@ -95,7 +96,7 @@ class Explorer(param.Parameterized):
                  query: dict | None = None, location: Location | None = None
                  ) -> None:
         state = state or ExplorerState()
-        #: the page's URL (`app.guard.location_of`), None without a served page
+        #: the page's URL (`app.page.guard.location_of`), None without a served page
         self.location = location
         query = dict(query or {})
         view = query_value(query.pop("view", ""))
@@ -106,7 +107,7 @@ class Explorer(param.Parameterized):
         self.messages = messages
         #: the Motor scene's part of the URL (applied when the scene is built)
         self._motor_query = motor_query
-        #: the page shown: '' (everything) or 'present' (one screen, `app.presentation`)
+        #: the page shown: '' (everything) or 'present' (one screen, `app.page.presentation`)
         self.view_name = view if view == presentation.VIEW else ""
         if view not in ("", presentation.VIEW):
             self.messages.append(f"view = {view!r} is unknown (known: {presentation.VIEW});"
@@ -537,7 +538,7 @@ class Explorer(param.Parameterized):
     # ---------------------------------------------------------------- outputs
 
     def csv_text(self, key: str, tau: float | None = None) -> str:
-        """CSV of the data shown (`app.export`): 'curves' (T, radii, motion on the tau
+        """CSV of the data shown (`app.contact.export`): 'curves' (T, radii, motion on the tau
         grid), 'traction' (the profile at time tau, rad: by default the state's) or
         'impulse' (the impulse curve), after comment lines naming the parameters."""
         self.catch_up(self.tabbed)  # a hidden tab's data too, as it is now
@@ -607,7 +608,7 @@ class Explorer(param.Parameterized):
         loc.search = "?" + urlencode(query)
 
     def view(self) -> pn.Column:
-        """The page: `app.layout.page`, or the one-screen `app.presentation` view when
+        """The page: `app.page.layout.page`, or the one-screen `app.page.presentation` view when
         the explorer was opened with view=present."""
         if self.view_name == presentation.VIEW:
             return presentation.presentation(self)

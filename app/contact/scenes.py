@@ -44,8 +44,8 @@ from bokeh.models import (
 )
 from bokeh.plotting import figure
 
-from app.phases import STICK_COLOR, style
-from app.wire import inline
+from app.contact.phases import STICK_COLOR, style
+from app.kit.wire import inline
 from core import Contact, impulse_ratio
 
 TOOLS = "pan,wheel_zoom,box_zoom,reset,save"

@@ -4,7 +4,7 @@ In the header, the link to the full page (it keeps the parameters); below it a r
 the controls a teacher uses in front of a class (preset, Play, Step, Reset, speed, the
 time); then, without scrolling, the two spheres with their phase badge, the traction
 profile with the contact disc beside it, and T(tau).  The same scenes and controls as
-the full page (`app.layout.page`): this module only arranges and sizes them.
+the full page (`app.page.layout.page`): this module only arranges and sizes them.
 
 The page is one screen high (`100vh`) and the scenes take the height the header and
 the controls leave: the plots grow with the screen (at 1280 x 720 the spheres are about
@@ -22,16 +22,16 @@ from typing import TYPE_CHECKING
 
 import panel as pn
 
-from app import layout
-from app.scenes import place_legend
+from app.contact.scenes import place_legend
+from app.page import layout
 
 if TYPE_CHECKING:
-    from app.explorer import Explorer
+    from app.page.explorer import Explorer
 
 #: The name of the view in the URL (`view=present`).
 VIEW = "present"
 
-#: The spheres' plot outside its frame (px, with the type of `app.scenes.style_figure`):
+#: The spheres' plot outside its frame (px, with the type of `app.contact.scenes.style_figure`):
 #: (across, down): its borders across; its title, toolbar and borders down.
 SPHERES_RIM = (10, 37)
 #: The disc's plot outside its frame (px): (across, down): the y axis with its label and

@@ -13,11 +13,11 @@ from typing import TYPE_CHECKING
 
 import panel as pn
 
-from app.phases import STYLES
+from app.contact.phases import STYLES
 from core import Phase
 
 if TYPE_CHECKING:
-    from app.explorer import Explorer
+    from app.page.explorer import Explorer
 
 #: Colour key of the contact disc (the figure has no legend, see DiscScene).
 DISC_KEY = " ".join(
@@ -113,7 +113,7 @@ class Keys:
     opposite: bool = False
 
 
-#: The keys the page answers to (the sliders are `app.widgets.LabelledSlider`s, range
+#: The keys the page answers to (the sliders are `app.kit.widgets.LabelledSlider`s, range
 #: inputs with Page Up / Down added; text boxes, menus, check boxes and buttons are the
 #: browser's own).  The curve tabs are not listed: BokehJS's tabs answer to the mouse
 #: only.

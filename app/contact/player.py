@@ -31,10 +31,10 @@ import numpy as np
 from bokeh.models import ColumnDataSource, CustomJS, Label
 from bokeh.plotting import figure as Figure
 
-from app.formulas import formulas
-from app.phases import style
-from app.scenes import CurveScene, DiscScene, TractionScene
-from app.wire import column
+from app.contact.formulas import formulas
+from app.contact.phases import style
+from app.contact.scenes import CurveScene, DiscScene, TractionScene
+from app.kit.wire import column
 from core import Contact, Phase
 
 FRAMES_PER_CONTACT = 240  # one contact at speed 1 in CONTACT_SECONDS: 60 frames/s at 4 s
