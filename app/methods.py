@@ -41,7 +41,7 @@ from app.benchmark_charts import (
     stability_data,
     stability_figure,
 )
-from app.contact.scenes import CURVE_POINTS, fit_range, new_figure, style_figure
+from app.kit.figures import CURVE_POINTS, fit_range, new_figure, style_figure
 from app.kit.widgets import LabelledCheckbox
 from core import Contact
 

@@ -45,7 +45,7 @@ from bokeh.models import ColumnDataSource, DataRange1d, Label, Range1d
 from panel.io import hold
 
 from app.contact import export
-from app.contact.scenes import FRAME_LEVEL, fit_range, new_figure, style_figure
+from app.kit.figures import FRAME_LEVEL, fit_range, new_figure, style_figure
 from app.kit.widgets import ERROR_STYLE, ExactSlider
 from app.kit.wire import inline
 from app.methods import WORKER, SharedWorker

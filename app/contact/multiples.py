@@ -16,8 +16,9 @@ from bokeh.layouts import gridplot
 from bokeh.models import ColumnDataSource
 
 from app.contact.phases import STICK_COLOR, style
-from app.contact.scenes import TractionScene, new_figure, style_figure
 from app.contact.state import PRESETS
+from app.contact.traction import TractionScene
+from app.kit.figures import new_figure, style_figure
 from core import Contact
 
 #: The presets of Fig. 6, in the paper's order.

@@ -38,7 +38,7 @@ from bokeh.models import (
 from bokeh.plotting import figure
 
 from app.contact.phases import STICK_COLOR, style
-from app.contact.scenes import FRAME_LEVEL, Scene, draw, png_name, style_figure
+from app.kit.figures import FRAME_LEVEL, Scene, draw, png_name, style_figure
 from app.kit.wire import column, inline
 from core import Contact
 from core.clock import half_sines

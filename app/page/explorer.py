@@ -31,21 +31,14 @@ from panel.io.location import Location
 from panel.io.resources import get_dist_path
 
 from app.contact import export
+from app.contact.curves import ForceScene, MotionScene, RadiiScene
 from app.contact.formulas import formulas
+from app.contact.impulse import ImpulseScene
 from app.contact.multiples import SmallMultiples
 from app.contact.notes import NOTES
 from app.contact.physical_inputs import PhysicalInputs
 from app.contact.player import Player, frame_index, frame_taus
 from app.contact.readout import Readout
-from app.contact.scenes import (
-    DiscScene,
-    ForceScene,
-    ImpulseScene,
-    MotionScene,
-    RadiiScene,
-    Scene,
-    TractionScene,
-)
 from app.contact.spheres import SpheresScene
 from app.contact.state import (
     PRESETS,
@@ -56,6 +49,8 @@ from app.contact.state import (
     parse_value,
     query_value,
 )
+from app.contact.traction import DiscScene, TractionScene
+from app.kit.figures import Scene
 from app.kit.widgets import ExactSlider, LabelledCheckbox, LabelledSlider, bind, follow
 from app.methods import MethodsScene
 from app.motor import FIELDS as MOTOR_FIELDS

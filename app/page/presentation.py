@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 
 import panel as pn
 
-from app.contact.scenes import place_legend
+from app.kit.figures import place_legend
 from app.page import layout
 
 if TYPE_CHECKING:
@@ -31,7 +31,7 @@ if TYPE_CHECKING:
 #: The name of the view in the URL (`view=present`).
 VIEW = "present"
 
-#: The spheres' plot outside its frame (px, with the type of `app.contact.scenes.style_figure`):
+#: The spheres' plot outside its frame (px, with the type of `app.kit.figures.style_figure`):
 #: (across, down): its borders across; its title, toolbar and borders down.
 SPHERES_RIM = (10, 37)
 #: The disc's plot outside its frame (px): (across, down): the y axis with its label and

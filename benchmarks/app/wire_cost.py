@@ -20,7 +20,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from app.contact.scenes import CURVE_POINTS, TractionScene
+from app.contact.traction import TractionScene
+from app.kit.figures import CURVE_POINTS
 from core import Contact
 
 

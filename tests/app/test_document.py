@@ -25,8 +25,8 @@ from app.contact.notes import NOTES
 from app.contact.phases import STYLES
 from app.contact.player import frame_index, frame_taus
 from app.contact.readout import CAPTION, table_html
-from app.contact.scenes import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
 from app.contact.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
+from app.kit.figures import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
 from app.page.explorer import CONTACT_SECONDS, Explorer
 from core import PHASE_NAMES, Contact, Phase, impulse_ratio
 

@@ -13,9 +13,10 @@ import pandas as pd
 import pytest
 from explorer_browser import wait_until
 
+from app.contact.impulse import ImpulseScene
 from app.contact.player import frame_taus
-from app.contact.scenes import CURVE_POINTS, PROFILE_POINTS, ImpulseScene
 from app.contact.state import SQRT2_1
+from app.kit.figures import CURVE_POINTS, PROFILE_POINTS
 from app.page.explorer import Explorer
 from core import Contact, impulse_ratio
 
