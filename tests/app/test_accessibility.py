@@ -11,9 +11,9 @@ from __future__ import annotations
 import pytest
 from explorer_browser import open_explorer, wait_until
 
+from app.contact.data import readout_rows
 from app.contact.readout import CAPTION
 from app.contact.state import ExplorerState
-from app.page.explorer import Explorer
 from app.page.layout import KEY_NAMES, KEYS
 
 pytestmark = pytest.mark.browser
@@ -359,7 +359,7 @@ def test_derived_quantities_are_a_table_of_text(browser, url) -> None:
     assert table is not None and table["caption"] == CAPTION
     assert table["scopes"] == ["col", "col"] + ["row"] * len(table["rows"])
     state = ExplorerState()
-    assert [tuple(r) for r in table["rows"]] == Explorer.readout_rows(state.contact())
+    assert [tuple(r) for r in table["rows"]] == readout_rows(state.contact())
     psi_row = table["rows"][[q for q, _ in table["rows"]].index("ψ")]
     page.locator(".slider-psi input[type=range]").focus()
     page.keyboard.press("ArrowRight")
@@ -369,7 +369,7 @@ def test_derived_quantities_are_a_table_of_text(browser, url) -> None:
     state.psi = page.evaluate("() => __psi()")
     table = page.evaluate(JS_READOUT)
     page.close()
-    assert [tuple(r) for r in table["rows"]] == Explorer.readout_rows(state.contact())
+    assert [tuple(r) for r in table["rows"]] == readout_rows(state.contact())
 
 
 # ----------------------------------------------------------------- keyboard

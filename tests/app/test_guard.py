@@ -115,7 +115,7 @@ def test_a_value_no_browser_sends_is_refused_once(slider: str, value: float) -> 
     """NaN used to recurse until Python's limit (nan != nan) in the state's handler."""
     ex = Explorer()
     before = {k: getattr(ex.state, k) for k in ("psi", "tau0", "mu", "nu", "tau", "speed")}
-    widget = getattr(ex, f"{slider}_slider")
+    widget = getattr(ex.contact.controls, f"{slider}_slider")
     target = getattr(widget, "_slider", widget)  # the browser's range input
     limit = sys.getrecursionlimit()
     sys.setrecursionlimit(400)  # a recursion would show as RecursionError quickly
