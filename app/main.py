@@ -1,9 +1,9 @@
 """Entry point of `panel serve app/main.py`: one explorer per browser session, its page
-built from the URL whatever the URL holds (`app.guard`)."""
+built from the URL whatever the URL holds (`app.page.guard`)."""
 
 import panel as pn
 
-from app.guard import serve_page
+from app.page.guard import serve_page
 
 pn.extension("katex", notifications=False)
 

@@ -250,11 +250,11 @@ def main(argv: list[str] | None = None) -> None:
     warm()
     from bokeh.document import Document
 
-    import app.explorer  # (what every session's script imports)
+    import app.page.explorer  # (what every session's script imports)
 
     # one page built and dropped: what a first page would do once (Panel's and Bokeh's
     # lazy imports and caches) is done before a visitor waits for it
-    app.explorer.Explorer().view().get_root(Document())
+    app.page.explorer.Explorer().view().get_root(Document())
     log.info("closed form and a page ready in %.1f s", time.perf_counter() - started)
     try:  # with a warm cache they are loaded in a second or two: before the address
         methods.wait(timeout=METHODS_WAIT_S)

@@ -22,8 +22,8 @@ from panel.io import hold
 
 from app.dem import data
 from app.dem.state import DemState
-from app.scenes import fit_range, new_figure, style_figure
-from app.widgets import ERROR_STYLE, bind, text_html
+from app.kit.figures import fit_range, new_figure, style_figure
+from app.kit.widgets import ERROR_STYLE, bind, text_html
 from core.dem_check import CASES, lammps
 
 TITLE = "Check a DEM code: LAMMPS and yours against the exact solution"

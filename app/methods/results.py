@@ -5,7 +5,7 @@ speed_accuracy.csv and stability_map.csv to `benchmarks/results/`;
 `python -m app.methods.publish benchmarks/results --publish` (`make bench-charts`)
 copies them into the app's package data, `app/results/` (`RESULTS`), read here through
 `importlib.resources`.  A download of either file opens with the explorer's header block
-(`app.export`): what it holds, the source, the app's version, the command that wrote it
+(`app.contact.export`): what it holds, the source, the app's version, the command that wrote it
 and each column with its unit.
 """
 
@@ -16,7 +16,7 @@ from importlib import resources
 
 import numpy as np
 
-from app import export
+from app.contact import export
 
 #: The results the explorer shows (speed_accuracy.csv, stability_map.csv): package
 #: data of `app`.

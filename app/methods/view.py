@@ -20,7 +20,9 @@ import panel as pn
 from bokeh.models import ColumnDataSource
 from panel.io import hold
 
+from app.kit.figures import CURVE_POINTS, fit_range, new_figure, style_figure
 from app.kit.jobs import RUNNER
+from app.kit.widgets import LabelledCheckbox, text_html
 from app.methods import data
 from app.methods.results import RESULTS, download_text, read_rows
 from app.methods.speed_chart import STYLE, SpeedAccuracyData, speed_accuracy_chart
@@ -35,8 +37,6 @@ from app.methods.stability_chart import (
     stability_data,
     stability_figure,
 )
-from app.scenes import CURVE_POINTS, fit_range, new_figure, style_figure
-from app.widgets import LabelledCheckbox, text_html
 from core import Contact
 
 #: The colour of a method the charts have no style for.

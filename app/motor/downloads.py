@@ -1,4 +1,4 @@
-"""The Motor card's CSV files in the explorer's style (`app.export`): a header block with
+"""The Motor card's CSV files in the explorer's style (`app.contact.export`): a header block with
 the source, the app's version and the inputs in SI (the floats core computed with),
 columns named with their units, file names carrying the inputs in display units.
 
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from app import export
+from app.contact import export
 from app.motor.data import KEY_DIGITS, AtX0, scales
 from app.motor.fields import FIELDS, ROD_FIELDS, ROTOR_FIELDS, SI_UNITS
 from app.motor.state import MotorState
@@ -73,7 +73,7 @@ def header(key: str, motor: Motor, x0: float, at: AtX0 | None) -> list[str]:
 
 
 def filename(key: str, state: MotorState) -> str:
-    """The CSV's file name (`app.export.named`): what it holds and the inputs in display
+    """The CSV's file name (`app.contact.export.named`): what it holds and the inputs in display
     units (to 6 significant digits), x0 for the curve at x0."""
     names = (*ROD_FIELDS, *ROTOR_FIELDS, *(("x0",) if key == "speed" else ()))
     return export.named(f"motor_{key}", [

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from bokeh.models import ColumnDataSource, DataRange1d, Label, Range1d
 
-from app.scenes import FRAME_LEVEL, new_figure, style_figure
+from app.kit.figures import FRAME_LEVEL, new_figure, style_figure
 
 #: Colours (Okabe-Ito) and the shading of the never-opening region.
 THRUST_COLOR, EFFICIENCY_COLOR, ROTOR_COLOR = "#0072B2", "#009E73", "#D55E00"

@@ -7,11 +7,11 @@ import math
 
 import numpy as np
 
+from app.kit.figures import fit_range
+from app.kit.widgets import text_html
+from app.kit.wire import inline
 from app.motor import data
 from app.motor.figures import BEST_COLOR, NO_LOAD_COLOR, MotorFigures
-from app.scenes import fit_range
-from app.widgets import text_html
-from app.wire import inline
 from core.motor import Motor
 
 

@@ -27,8 +27,11 @@ import param
 from bokeh.events import Tap
 from panel.io import hold
 
-from app import export
+from app.contact import export
+from app.kit.figures import fit_range
 from app.kit.jobs import RUNNER
+from app.kit.widgets import ERROR_STYLE, ExactSlider, LabelledCheckbox, show_later, text_html
+from app.kit.wire import inline
 from app.motor import data, downloads, plots
 from app.motor.fields import (
     FIELDS,
@@ -45,9 +48,6 @@ from app.motor.fields import (
 )
 from app.motor.figures import MotorFigures
 from app.motor.state import URL_PARAMS, MotorState, decode
-from app.scenes import fit_range
-from app.widgets import ERROR_STYLE, ExactSlider, LabelledCheckbox, show_later, text_html
-from app.wire import inline
 
 #: Inputs whose change needs only the job (not the closed-form drawing).
 JOB_ONLY = frozenset((*WEAR_FIELDS, *LOAD_FIELDS))

@@ -161,7 +161,7 @@ def gc_pauses(pages: int) -> list[tuple[float, float, int]]:
     from bokeh.document import Document
     from panel.io.state import set_curdoc
 
-    from app.explorer import build_explorer
+    from app.page.explorer import build_explorer
 
     pn.extension("katex", notifications=False)
     full = {"start": 0.0, "total": 0.0}

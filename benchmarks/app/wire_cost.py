@@ -1,7 +1,7 @@
 """What encoding a psi move's columns costs (app/wire.py): CPU and bytes per gzip level.
 
 The columns a psi move sends that are float curves (T(τ) with its bounds on the
-contact's grid, and the traction profile), encoded as `app.wire.InlineColumn` does:
+contact's grid, and the traction profile), encoded as `app.kit.wire.InlineColumn` does:
 base64 of a gzip stream, at gzip levels 0 (stored), 1, 2 (Bokeh's default) and 6.
 
     .venv/bin/python benchmarks/app/wire_cost.py
@@ -20,7 +20,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from app.scenes import CURVE_POINTS, TractionScene
+from app.contact.traction import TractionScene
+from app.kit.figures import CURVE_POINTS
 from core import Contact
 
 

@@ -11,10 +11,10 @@ from __future__ import annotations
 import pytest
 from explorer_browser import open_explorer, wait_until
 
-from app.explorer import Explorer
-from app.layout import KEY_NAMES, KEYS
-from app.readout import CAPTION
-from app.state import ExplorerState
+from app.contact.data import readout_rows
+from app.contact.readout import CAPTION
+from app.contact.state import ExplorerState
+from app.page.layout import KEY_NAMES, KEYS
 
 pytestmark = pytest.mark.browser
 
@@ -304,7 +304,7 @@ def test_check_boxes_have_names(names) -> None:
 
 
 def test_sliders_are_named_after_their_labels(names) -> None:
-    """Each slider (a range input, `app.widgets.LabelledSlider`) is named by its label: the
+    """Each slider (a range input, `app.kit.widgets.LabelledSlider`) is named by its label: the
     same words as its number box's."""
     assert sorted(names["slider"]) == sorted([
         "ψ = tan θ / tan θ₀", "τ₀ (rad): contact starts", "μ friction", "ν Poisson ratio",
@@ -359,7 +359,7 @@ def test_derived_quantities_are_a_table_of_text(browser, url) -> None:
     assert table is not None and table["caption"] == CAPTION
     assert table["scopes"] == ["col", "col"] + ["row"] * len(table["rows"])
     state = ExplorerState()
-    assert [tuple(r) for r in table["rows"]] == Explorer.readout_rows(state.contact())
+    assert [tuple(r) for r in table["rows"]] == readout_rows(state.contact())
     psi_row = table["rows"][[q for q, _ in table["rows"]].index("ψ")]
     page.locator(".slider-psi input[type=range]").focus()
     page.keyboard.press("ArrowRight")
@@ -369,7 +369,7 @@ def test_derived_quantities_are_a_table_of_text(browser, url) -> None:
     state.psi = page.evaluate("() => __psi()")
     table = page.evaluate(JS_READOUT)
     page.close()
-    assert [tuple(r) for r in table["rows"]] == Explorer.readout_rows(state.contact())
+    assert [tuple(r) for r in table["rows"]] == readout_rows(state.contact())
 
 
 # ----------------------------------------------------------------- keyboard

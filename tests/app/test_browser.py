@@ -21,10 +21,10 @@ from explorer_browser import (
     wait_until,
 )
 
-from app import spheres
-from app.phases import style
-from app.scenes import CURVE_POINTS
-from app.state import PRESETS, ExplorerState, parse_query
+from app.contact import spheres
+from app.contact.phases import style
+from app.contact.state import PRESETS, ExplorerState, parse_query
+from app.kit.figures import CURVE_POINTS
 from core import Contact
 
 pytestmark = pytest.mark.browser
@@ -350,7 +350,7 @@ def test_phone_width_stacks_the_plots(browser, url) -> None:
 
 
 def test_legend_click_hides_the_curve(browser, url) -> None:
-    """Legend entries are empty proxies (app.scenes.add_legend); a click on one must
+    """Legend entries are empty proxies (app.kit.figures.add_legend); a click on one must
     still hide the real curve, and a second click show it again."""
     page, console = open_explorer(browser, url)
     assert column(page, "motion", "u2") is None  # its tab is closed: not in the page

@@ -17,17 +17,18 @@ import pytest
 from bokeh.document import Document
 from bokeh.models import Range1d
 
-import app.explorer
-import app.widgets
-from app import spheres
-from app.explorer import CONTACT_SECONDS, Explorer
-from app.formulas import formulas
-from app.notes import NOTES
-from app.phases import STYLES
-from app.player import frame_index, frame_taus
-from app.readout import CAPTION, table_html
-from app.scenes import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
-from app.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
+import app.kit.widgets
+import app.page.explorer
+from app.contact import data, spheres
+from app.contact.animation import CONTACT_SECONDS
+from app.contact.formulas import formulas
+from app.contact.notes import NOTES
+from app.contact.phases import STYLES
+from app.contact.player import frame_index, frame_taus
+from app.contact.readout import CAPTION, table_html
+from app.contact.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
+from app.kit.figures import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
+from app.page.explorer import Explorer
 from core import PHASE_NAMES, Contact, Phase, impulse_ratio
 
 eq = np.testing.assert_array_equal
@@ -46,38 +47,38 @@ def contact_of(ex: Explorer) -> Contact:
 def assert_sources_match_core(ex: Explorer) -> None:
     """Every named source holds what core computes for the explorer's state, each curve
     scene once its tab is opened (the open tab is left as it was)."""
-    active = ex.tabs.active
-    for i in range(len(ex.tabbed)):
-        ex.tabs.active = i
-    ex.tabs.active = active
-    assert not ex._stale  # every tab was opened: all caught up
+    active = ex.contact.tabs.active
+    for i in range(len(ex.contact.tabbed)):
+        ex.contact.tabs.active = i
+    ex.contact.tabs.active = active
+    assert not ex.contact._stale  # every tab was opened: all caught up
     c, tau = contact_of(ex), ex.state.tau
     grid = c.tau_grid(CURVE_POINTS)
 
-    d = ex.force.source.data
+    d = ex.contact.force.source.data
     eq(d["tau"], grid)
     eq(d["T"], c.tangential_force(grid))
     eq(d["muP"], c.normal_force(grid))
     eq(d["neg_muP"], -c.normal_force(grid))
-    m = ex.force.marker.data
+    m = ex.contact.force.marker.data
     assert m["x"] == [tau] * 3
     assert m["y"][0] == float(c.tangential_force(np.array([tau]))[0])
 
-    d = ex.radii.source.data
+    d = ex.contact.radii.source.data
     eq(d["tau"], grid)
     eq(d["approach"], c.approach(grid))
     eq(d["a"], c.contact_radius(grid))
     eq(d["b"], c.stick_radius(grid))
 
-    d = ex.motion.source.data
-    grid = ex.motion.grid(c)  # with the jumps and a margin outside the contact
+    d = ex.contact.motion.source.data
+    grid = ex.contact.motion.grid(c)  # with the jumps and a margin outside the contact
     eq(d["tau"], grid)
     eq(d["v2"], c.centre_velocity(grid))
     eq(d["u2"], c.centre_displacement(grid))
     eq(d["drive_v"], c.drive_velocity(grid))
     eq(d["drive_u"], c.drive_displacement(grid))
 
-    d = ex.traction.source.data
+    d = ex.contact.traction.source.data
     r = np.asarray(d["r"])
     # the grid with -a, a, -b, b inserted: a constant length, so the player can copy
     # frames in place (duplicates where b = 0 or b = a)
@@ -89,14 +90,14 @@ def assert_sources_match_core(ex: Explorer) -> None:
     stick = (np.abs(r) <= b) & (b > 0)
     eq(d["stick_hi"], np.where(stick, c.pressure(r, tau), 0.0))
     phase = PHASE_NAMES[int(c.phase(tau))]
-    assert ex.traction.phase_label.text == phase
+    assert ex.contact.traction.phase_label.text == phase
 
-    d = ex.disc.source.data
+    d = ex.contact.disc.source.data
     assert d["inner"] == [0.0, b] and d["outer"] == [b, a]
 
-    d = ex.impulse.source.data
+    d = ex.contact.impulse.source.data
     eq(d["ratio"], impulse_ratio(np.asarray(d["psi"]), c.tau0))
-    assert ex.impulse.marker.data == {"psi": [c.psi], "ratio": [c.impulse_ratio]}
+    assert ex.contact.impulse.marker.data == {"psi": [c.psi], "ratio": [c.impulse_ratio]}
 
 
 def test_default_state_is_the_default_preset(ex: Explorer) -> None:
@@ -112,15 +113,16 @@ def test_default_state_is_the_default_preset(ex: Explorer) -> None:
     ("tau0_slider", -0.4), ("tau0_slider", 1.2), ("mu_slider", 0.55), ("nu_slider", 0.05),
 ])
 def test_widget_change_recomputes_every_source(ex: Explorer, widget: str, value: float) -> None:
-    before = np.asarray(ex.force.source.data["T"]).copy()
-    getattr(ex, widget).value = value
+    before = np.asarray(ex.contact.force.source.data["T"]).copy()
+    getattr(ex.contact.controls, widget).value = value
     assert getattr(ex.state, widget.removesuffix("_slider")) == value
     assert_sources_match_core(ex)
     c = contact_of(ex)
     assert c.tau0 <= ex.state.tau <= c.tau_end
-    assert (ex.tau_slider.start, ex.tau_slider.end) == (c.tau0, c.tau_end)
+    assert ((ex.contact.controls.tau_slider.start, ex.contact.controls.tau_slider.end) ==
+            (c.tau0, c.tau_end))
     if widget in ("psi_slider", "tau0_slider"):
-        after = np.asarray(ex.force.source.data["T"])
+        after = np.asarray(ex.contact.force.source.data["T"])
         assert after.shape != before.shape or not np.array_equal(after, before)
     assert ex.state.preset == ""  # an edit leaves the preset
 
@@ -128,16 +130,16 @@ def test_widget_change_recomputes_every_source(ex: Explorer, widget: str, value:
 def readout_rows(ex: Explorer) -> list[tuple[str, str]]:
     """The (quantity, value) rows the derived-quantities table shows (its HTML read as
     XML: the table is well-formed, its text escaped)."""
-    table = ET.fromstring(ex.readout.pane.object)
+    table = ET.fromstring(ex.contact.readout.pane.object)
     return [(tr.find("th").text or "", tr.find("td").text or "")
             for tr in table.find("tbody")]
 
 
 def test_theta_readout_follows_mu_and_nu(ex: Explorer) -> None:
-    ex.mu_slider.value = 0.5
+    ex.contact.controls.mu_slider.value = 0.5
     c = contact_of(ex)
     rows = readout_rows(ex)
-    assert rows == Explorer.readout_rows(c)
+    assert rows == data.readout_rows(c)
     values = [v for _, v in rows]
     assert f"{math.degrees(c.theta0):.3f}°" in values
     assert f"{math.degrees(c.theta):.3f}°" in values
@@ -155,51 +157,54 @@ def test_readout_is_a_table_of_text() -> None:
 
 
 def test_tau_change_updates_only_tau_dependent_data(ex: Explorer) -> None:
-    force_data = ex.force.source.data
-    ex.tau_slider.value = 1.0
+    force_data = ex.contact.force.source.data
+    ex.contact.controls.tau_slider.value = 1.0
     assert ex.state.tau == 1.0
-    assert ex.force.source.data is force_data  # curves untouched by a tau change
-    assert list(ex.force.marker.data["x"]) == [1.0] * 3  # markers and the tau cursor
+    assert ex.contact.force.source.data is force_data  # curves untouched by a tau change
+    assert list(ex.contact.force.marker.data["x"]) == [1.0] * 3  # markers and the tau cursor
     assert_sources_match_core(ex)
-    assert "Slip (while loading" in ex.formulas.object
+    assert "Slip (while loading" in ex.contact.controls.formulas.object
 
 
 def test_tau_is_clamped_into_the_new_contact(ex: Explorer) -> None:
-    ex.tau_slider.value = 0.6
-    ex.tau0_slider.value = 1.0
+    ex.contact.controls.tau_slider.value = 0.6
+    ex.contact.controls.tau0_slider.value = 1.0
     assert ex.state.tau == 1.0
     assert_sources_match_core(ex)
 
 
 def test_log_psi_axis_reaches_1e6(ex: Explorer) -> None:
-    ex.tabs.active = ex.tabbed.index(ex.impulse)
-    ex.log_box.value = True
-    psi = np.asarray(ex.impulse.source.data["psi"])
+    ex.contact.tabs.active = ex.contact.tabbed.index(ex.contact.impulse)
+    ex.contact.controls.log_box.value = True
+    psi = np.asarray(ex.contact.impulse.source.data["psi"])
     assert psi.min() <= 1e-3 and psi.max() >= 1e6 and 1.0 in psi
-    assert ex.panes[ex.tabbed.index(ex.impulse)].object is ex.impulse.log_figure
+    assert (ex.contact.panes[ex.contact.tabbed.index(ex.contact.impulse)].object is
+            ex.contact.impulse.log_figure)
     assert_sources_match_core(ex)
-    ex.log_box.value = False
-    assert np.asarray(ex.impulse.source.data["psi"]).max() == pytest.approx(30.0)
-    assert ex.panes[ex.tabbed.index(ex.impulse)].object is ex.impulse.linear_figure
+    ex.contact.controls.log_box.value = False
+    assert np.asarray(ex.contact.impulse.source.data["psi"]).max() == pytest.approx(30.0)
+    assert (ex.contact.panes[ex.contact.tabbed.index(ex.contact.impulse)].object is
+            ex.contact.impulse.linear_figure)
 
 
 def test_large_psi_in_linear_mode_extends_the_axis(ex: Explorer) -> None:
-    ex.tabs.active = ex.tabbed.index(ex.impulse)
-    ex.psi_slider.value = 100.0
-    psi = np.asarray(ex.impulse.source.data["psi"])
+    ex.contact.tabs.active = ex.contact.tabbed.index(ex.contact.impulse)
+    ex.contact.controls.psi_slider.value = 100.0
+    psi = np.asarray(ex.contact.impulse.source.data["psi"])
     assert psi.max() >= 100.0 and 1.0 in psi
-    assert ex.impulse.marker.data == {"psi": [100.0], "ratio": [contact_of(ex).impulse_ratio]}
+    assert (ex.contact.impulse.marker.data ==
+            {"psi": [100.0], "ratio": [contact_of(ex).impulse_ratio]})
 
 
 def test_moving_psi_sends_only_the_impulse_marker(ex: Explorer) -> None:
     """The impulse curve depends on tau0 only: a psi move must not recompute it."""
-    ex.tabs.active = ex.tabbed.index(ex.impulse)
-    curve = ex.impulse.source.data
-    ex.psi_slider.value = 3.0
-    assert ex.impulse.source.data is curve
-    assert ex.impulse.marker.data["psi"] == [3.0]
-    ex.tau0_slider.value = 0.3
-    assert ex.impulse.source.data is not curve
+    ex.contact.tabs.active = ex.contact.tabbed.index(ex.contact.impulse)
+    curve = ex.contact.impulse.source.data
+    ex.contact.controls.psi_slider.value = 3.0
+    assert ex.contact.impulse.source.data is curve
+    assert ex.contact.impulse.marker.data["psi"] == [3.0]
+    ex.contact.controls.tau0_slider.value = 0.3
+    assert ex.contact.impulse.source.data is not curve
     assert_sources_match_core(ex)
 
 
@@ -213,10 +218,11 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
     change back.)"""
     doc = Document()
     ex.view().server_doc(doc)
-    ex.psi_slider.value = 2.5  # leaves the preset: the preset menu changes this once
+    # leaves the preset: the preset menu changes this once
+    ex.contact.controls.psi_slider.value = 2.5
     events = []
     doc.on_change(events.append)
-    ex.psi_slider._slider.value = 2.51  # as a move in the browser arrives
+    ex.contact.controls.psi_slider._slider.value = 2.51  # as a move in the browser arrives
     changed = {(type(e.model).__name__, e.model.name, getattr(e, "attr", "data"))
                for e in events}
     data = {("ColumnDataSource", n, "data") for n in (
@@ -227,10 +233,11 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
                               ("Label", "spheres_rest_note", "text"),
                               (type(slider).__name__, slider.name, "value"),
                               ("TextInput", None, "value"), ("TextInput", None, "value_input")}
-    assert ex.state.psi == ex.psi_slider.value == 2.51
+    assert ex.state.psi == ex.contact.controls.psi_slider.value == 2.51
     events.clear()
     assert doc.get_model_by_name("radii") is None  # a closed tab's plot is not in the page
-    ex.tabs.active = ex.tabbed.index(ex.radii)  # opening a tab brings it up to date
+    # opening a tab brings it up to date
+    ex.contact.tabs.active = ex.contact.tabbed.index(ex.contact.radii)
     changed = {(type(e.model).__name__, e.model.name) for e in events}
     assert ("ColumnDataSource", "radii_marker") in changed
     assert ("ColumnDataSource", "motion") not in changed
@@ -242,9 +249,9 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
 def test_legend_entries_are_static_proxies_of_the_curves(ex: Explorer) -> None:
     """A legend whose renderers' data change is repainted with them; the entries show
     empty copies instead, whose click handler names the real curves by id only."""
-    items = [item for fig in ex.motion.figures for item in fig.legend[0].items]
-    fig = ex.motion.figure
-    curves = [ex.motion.curves[i] for i in (0, 2, 1, 3)]  # v2, drive_v | u2, drive_u
+    items = [item for fig in ex.contact.motion.figures for item in fig.legend[0].items]
+    fig = ex.contact.motion.figure
+    curves = [ex.contact.motion.curves[i] for i in (0, 2, 1, 3)]  # v2, drive_v | u2, drive_u
     for item, (col, label, color, _) in zip(items, curves, strict=True):
         (proxy,) = item.renderers
         assert item.label.value == label
@@ -254,7 +261,7 @@ def test_legend_entries_are_static_proxies_of_the_curves(ex: Explorer) -> None:
         assert callback.args == {}
         curve = fig.select_one({"name": f"motion_{col}"})
         assert repr(curve.id) in callback.code
-        assert proxy.data_source is not ex.motion.source
+        assert proxy.data_source is not ex.contact.motion.source
 
 
 @pytest.mark.parametrize(("span", "step"), [(1.0, 0.1), (0.7, 0.1), (0.25, 0.05),
@@ -273,22 +280,23 @@ def test_snapped_ranges_hold_the_data_and_stay_put_for_small_moves() -> None:
 
 
 def test_radii_and_force_ranges_stay_put_for_a_psi_step(ex: Explorer) -> None:
-    before = [(f.y_range.start, f.y_range.end) for f in (ex.force.figure, ex.radii.figures[0])]
-    ex.psi_slider.value = ex.psi_slider.value + 0.01
-    after = [(f.y_range.start, f.y_range.end) for f in (ex.force.figure, ex.radii.figures[0])]
+    figures = (ex.contact.force.figure, ex.contact.radii.figures[0])
+    before = [(f.y_range.start, f.y_range.end) for f in figures]
+    ex.contact.controls.psi_slider.value = ex.contact.controls.psi_slider.value + 0.01
+    after = [(f.y_range.start, f.y_range.end) for f in figures]
     assert after == before
 
 
 @pytest.mark.parametrize("name", list(PRESETS))
 def test_presets_reproduce_the_papers_parameters(ex: Explorer, name: str) -> None:
-    ex.tau0_slider.value = 0.1  # leave the default first
-    ex.preset_select.value = name
+    ex.contact.controls.tau0_slider.value = 0.1  # leave the default first
+    ex.contact.controls.preset_select.value = name
     p = PRESETS[name]
     assert (ex.state.psi, ex.state.tau0, ex.state.tau) == (p.psi, p.tau0, p.tau)
     assert (ex.state.mu, ex.state.nu) == (0.2, 0.3)
     assert ex.state.preset == name
     assert_sources_match_core(ex)
-    fam = ex.force.family.data
+    fam = ex.contact.force.family.data
     assert [float(x.split("= ")[1]) for x in fam["label"]] == list(p.family)
     for psi, ys in zip(p.family, fam["ys"], strict=True):
         c = Contact(psi, p.tau0)
@@ -296,27 +304,27 @@ def test_presets_reproduce_the_papers_parameters(ex: Explorer, name: str) -> Non
 
 
 def _type_tau(ex: Explorer) -> None:
-    ex.tau_slider._entry.value = "2.3"  # what a typed value does (the box's value)
+    ex.contact.controls.tau_slider._entry.value = "2.3"  # what a typed value does (the box's value)
 
 
 @pytest.mark.parametrize("change", [
     _type_tau,
-    lambda ex: ex.step(),
+    lambda ex: ex.contact.animation.step(),
     lambda ex: ex.state.param.update(tau=ex.state.tau + 0.01),  # an animation tick's tau
     lambda ex: ex.state.param.update(physical=True),
     lambda ex: ex.state.param.update(mu=0.25),
 ], ids=["typed tau", "step", "animation tau", "SI inputs", "mu"])
 def test_a_change_of_what_a_preset_sets_leaves_it_everywhere(ex: Explorer, change) -> None:
-    ex.preset_select.value = "fig7b"
-    assert ex.state.preset == "fig7b" and len(ex.force.family.data["ys"]) == 3
+    ex.contact.controls.preset_select.value = "fig7b"
+    assert ex.state.preset == "fig7b" and len(ex.contact.force.family.data["ys"]) == 3
     change(ex)
-    assert ex.state.preset == "" and ex.preset_select.value == ""
-    assert ex.force.family.data["ys"] == []  # the preset's family of curves goes with it
+    assert ex.state.preset == "" and ex.contact.controls.preset_select.value == ""
+    assert ex.contact.force.family.data["ys"] == []  # the preset's family of curves goes with it
     assert "preset" not in ex.state.query()
-    ex.log_box.value = True  # a view option is not a parameter: no preset to leave
-    ex.preset_select.value = "fig6e"
-    ex.log_box.value = False
-    assert ex.state.preset == "fig6e" == ex.preset_select.value
+    ex.contact.controls.log_box.value = True  # a view option is not a parameter: no preset to leave
+    ex.contact.controls.preset_select.value = "fig6e"
+    ex.contact.controls.log_box.value = False
+    assert ex.state.preset == "fig6e" == ex.contact.controls.preset_select.value
 
 
 def test_fig6_presets_walk_through_the_phases(ex: Explorer) -> None:
@@ -328,26 +336,26 @@ def test_fig6_presets_walk_through_the_phases(ex: Explorer) -> None:
     # Fig. 6f sits at tau1 = 3 pi / 4: counter-slip starts, the stick disc has vanished,
     # and every part of the page says so
     assert contact_of(ex).tau1 == ex.state.tau == pytest.approx(3 * math.pi / 4, rel=1e-15)
-    assert ex.disc.source.data["inner"][1] == 0.0
-    assert ex.disc.source.data["label"][1] == "counter-slip"
-    assert ex.formulas.object.startswith("<p><b>Counter-slip (τ₁ ≤ τ")
-    assert ex.traction.phase_label.text == "counter-slip"
-    assert max(ex.traction.source.data["stick_hi"]) == 0.0  # no stick sliver drawn
+    assert ex.contact.disc.source.data["inner"][1] == 0.0
+    assert ex.contact.disc.source.data["label"][1] == "counter-slip"
+    assert ex.contact.controls.formulas.object.startswith("<p><b>Counter-slip (τ₁ ≤ τ")
+    assert ex.contact.traction.phase_label.text == "counter-slip"
+    assert max(ex.contact.traction.source.data["stick_hi"]) == 0.0  # no stick sliver drawn
 
 
 def test_reset_restores_defaults(ex: Explorer) -> None:
-    ex.psi_slider.value = 9.0
-    ex.speed_slider.value = 2.5
-    ex.material_select.value = "steel"  # physical inputs on, steel's G
+    ex.contact.controls.psi_slider.value = 9.0
+    ex.contact.controls.speed_slider.value = 2.5
+    ex.contact.controls.material_select.value = "steel"  # physical inputs on, steel's G
     ex.state.param.update(H=5e-6, omega=1e5)
     ex.state.playing = True
-    ex.reset_button.clicks += 1
+    ex.contact.controls.reset_button.clicks += 1
     assert ex.state.psi == SQRT2_1 and ex.state.preset == DEFAULT_PRESET
     assert not ex.state.playing and ex.state.speed == 1.0
     assert not ex.state.physical and ex.state.material == "custom"
     assert all(getattr(ex.state, k) == ExplorerState.param[k].default
                for k in ("R", "G", "H", "u0", "h", "omega"))
-    assert ex.contact.scales is None and ex.state.mu == 0.2 and ex.state.nu == 0.3
+    assert ex.contact.shown.scales is None and ex.state.mu == 0.2 and ex.state.nu == 0.3
     assert_sources_match_core(ex)
 
 
@@ -409,7 +417,7 @@ def test_good_query_sets_state_and_round_trips() -> None:
 @pytest.mark.parametrize("name", list(PRESETS))
 def test_a_link_restores_the_very_state_preset_included(name: str) -> None:
     ex = Explorer(query={"preset": name})
-    ex.psi_slider.value = ex.state.psi  # no change
+    ex.contact.controls.psi_slider.value = ex.state.psi  # no change
     shared = Explorer(query=ex.state.query())
     assert shared.state.query() == ex.state.query()
     assert shared.state.preset == name and not shared.message.visible
@@ -430,7 +438,7 @@ def read_csv(text: str) -> dict[str, np.ndarray]:
 
 
 def test_csv_curves_hold_the_plotted_data(ex: Explorer) -> None:
-    text = ex.csv_text("curves")
+    text = ex.contact.csv_text("curves")
     assert not re.search(r"(^|,)-0(,|$)", text, re.MULTILINE)  # no negative zeros
     table = read_csv(text)
     assert list(table) == ["tau (rad)", "T/T0", "mu P/T0", "-mu P/T0", "alpha/(H-h)", "a/a*",
@@ -440,32 +448,35 @@ def test_csv_curves_hold_the_plotted_data(ex: Explorer) -> None:
     np.testing.assert_allclose(table["tau (rad)"], c.tau_grid(CURVE_POINTS), rtol=1e-9)
     np.testing.assert_allclose(table["T/T0"], c.tangential_force(table["tau (rad)"]),
                                atol=1e-9)
-    np.testing.assert_allclose(table["b/a*"], ex.radii.source.data["b"], rtol=1e-9,
+    np.testing.assert_allclose(table["b/a*"], ex.contact.radii.source.data["b"], rtol=1e-9,
                                atol=1e-12)
 
 
 def test_csv_traction_and_impulse(ex: Explorer) -> None:
-    tr = read_csv(ex.csv_text("traction"))
-    np.testing.assert_allclose(tr["tau_u/(mu p*)"], ex.traction.source.data["traction"],
+    tr = read_csv(ex.contact.csv_text("traction"))
+    np.testing.assert_allclose(tr["tau_u/(mu p*)"], ex.contact.traction.source.data["traction"],
                                atol=1e-9)
-    im = read_csv(ex.csv_text("impulse"))
+    im = read_csv(ex.contact.csv_text("impulse"))
     np.testing.assert_allclose(im["T_imp/(mu P_imp)"], impulse_ratio(im["psi"], ex.state.tau0),
                                rtol=1e-8, atol=1e-12)
-    assert ex.downloads["impulse"].callback().read() == ex.csv_text("impulse")
-    assert ex.downloads["impulse"].filename == "zharii_impulse_psi2.414_tau0_0.5236_mu0.2_nu0.3.csv"
-    assert ex.downloads["traction"].callback().read() == ex.csv_text("traction")
-    assert ex.downloads["traction"].filename == (
+    assert (ex.contact.controls.downloads["impulse"].callback().read() ==
+            ex.contact.csv_text("impulse"))
+    assert (ex.contact.controls.downloads["impulse"].filename ==
+            "zharii_impulse_psi2.414_tau0_0.5236_mu0.2_nu0.3.csv")
+    assert (ex.contact.controls.downloads["traction"].callback().read() ==
+            ex.contact.csv_text("traction"))
+    assert ex.contact.controls.downloads["traction"].filename == (
         "zharii_traction_psi2.414_tau0_0.5236_mu0.2_nu0.3_tau2.225.csv")
 
 
 def test_download_named_after_the_parameters_at_the_click(ex: Explorer) -> None:
     ex.state.psi = 7.5
-    download = ex.downloads["curves"]
+    download = ex.contact.controls.downloads["curves"]
     download._clicks += 1  # what a click in the browser does
     assert download.filename.startswith("zharii_curves_psi7.5_")
     head, b64 = download.data.split(",", 1)
     assert head.endswith(";base64")
-    assert base64.b64decode(b64).decode() == ex.csv_text("curves")
+    assert base64.b64decode(b64).decode() == ex.contact.csv_text("curves")
 
 
 # --------------------------------------------------------------- animation
@@ -474,46 +485,46 @@ def test_download_named_after_the_parameters_at_the_click(ex: Explorer) -> None:
 def test_step_advances_tau_and_wraps(ex: Explorer) -> None:
     c = contact_of(ex)
     ex.state.tau = c.tau0
-    ex.speed_slider.value = 2.0
-    new = ex.step(0.1)
+    ex.contact.controls.speed_slider.value = 2.0
+    new = ex.contact.animation.step(0.1)
     assert new == pytest.approx(c.tau0 + 2.0 * (c.tau_end - c.tau0) * 0.1 / CONTACT_SECONDS)
     assert ex.state.tau == new
     assert_sources_match_core(ex)
     ex.state.tau = c.tau_end - 1e-3
-    assert ex.step(0.5) == c.tau_end  # the last frame lands on the end of contact
-    assert ex.step() == c.tau0  # then the contact starts again
+    assert ex.contact.animation.step(0.5) == c.tau_end  # the last frame lands on the end of contact
+    assert ex.contact.animation.step() == c.tau0  # then the contact starts again
 
 
 def test_step_button_and_play_toggle(ex: Explorer, monkeypatch) -> None:
     tau = ex.state.tau
-    ex.step_button.clicks += 1
+    ex.contact.controls.step_button.clicks += 1
     assert ex.state.tau > tau
     c = contact_of(ex)
     ex.state.tau = c.tau0
-    ex.play_button.clicks += 1
-    assert ex.state.playing and "Pause" in ex.play_button.label
-    progress, started, _ = ex._play_start
+    ex.contact.controls.play_button.clicks += 1
+    assert ex.state.playing and "Pause" in ex.contact.controls.play_button.label
+    progress, started, _ = ex.contact.animation.started
     assert progress == 0.0
     now = [started]
-    monkeypatch.setattr(app.explorer.time, "monotonic", lambda: now[0])
+    monkeypatch.setattr(app.contact.animation.time, "monotonic", lambda: now[0])
     # the browser's player shows the frames; the server follows its clock (the state
     # keeps the tau the play started from), and a change made while playing goes on
     # from the player's place in the contact
     now[0] += 1.53  # (off the frame boundaries: 1.53 s = 91.8 frames)
     progress = ex.state.speed * 1.53 / CONTACT_SECONDS
     expected = frame_taus(c)[frame_index(progress)]
-    assert ex.clock_tau() == expected and ex.state.tau == c.tau0
-    ex.speed_slider.value = 2.0  # the pace changes, the place stays
-    assert ex._play_start == (pytest.approx(progress, abs=1e-9), now[0], 2.0)
-    assert ex.clock_tau() == expected and ex.state.tau == c.tau0
-    ex.speed_slider.value = 1.0
+    assert ex.contact.animation.clock_tau() == expected and ex.state.tau == c.tau0
+    ex.contact.controls.speed_slider.value = 2.0  # the pace changes, the place stays
+    assert ex.contact.animation.started == (pytest.approx(progress, abs=1e-9), now[0], 2.0)
+    assert ex.contact.animation.clock_tau() == expected and ex.state.tau == c.tau0
+    ex.contact.controls.speed_slider.value = 1.0
     now[0] += 0.23
-    ex.play_button.clicks += 1  # pause: the plots settle on the frame being shown
-    assert not ex.state.playing and "Play" in ex.play_button.label
+    ex.contact.controls.play_button.clicks += 1  # pause: the plots settle on the frame being shown
+    assert not ex.state.playing and "Play" in ex.contact.controls.play_button.label
     progress += 0.23 / CONTACT_SECONDS  # at speed 1 again
     assert ex.state.tau == frame_taus(c)[frame_index(progress)]
-    assert ex.tau_slider.value == ex.state.tau
-    assert len(ex.player.frames.data) == 0
+    assert ex.contact.controls.tau_slider.value == ex.state.tau
+    assert len(ex.contact.player.frames.data) == 0
     assert_sources_match_core(ex)
 
 
@@ -522,7 +533,7 @@ def test_play_sends_the_frames_of_the_contact(ex: Explorer) -> None:
     ex.state.playing = True
     c = contact_of(ex)
     taus = frame_taus(c)
-    f, p = ex.player.frames.data, ex.player.profiles.data
+    f, p = ex.contact.player.frames.data, ex.contact.player.profiles.data
     eq(f["tau"], taus)
     eq(f["a"], c.contact_radius(taus))
     eq(f["b"], c.stick_radius(taus))
@@ -532,17 +543,18 @@ def test_play_sends_the_frames_of_the_contact(ex: Explorer) -> None:
     eq(f["radii:b"], c.stick_radius(taus))
     eq(f["motion:u2"], c.centre_displacement(taus))
     assert f["caption"][0].startswith(f"τ = {c.tau0:.4f} rad")
-    assert f["tau_text"] == [ex.tau_slider.text(t) for t in taus]  # the tau box's text
+    # the tau box's text
+    assert f["tau_text"] == [ex.contact.controls.tau_slider.text(t) for t in taus]
     shape = (taus.size, PROFILE_POINTS + 4)
     r = np.asarray(p["r"]).reshape(shape)
     eq(np.asarray(p["traction"]).reshape(shape), c.traction(r, taus[:, None]))
     eq(np.asarray(p["upper"]).reshape(shape), c.pressure(r, taus[:, None]))
     # a parameter change while playing sends the new contact's frames
-    ex.psi_slider.value = 6.46
+    ex.contact.controls.psi_slider.value = 6.46
     c = contact_of(ex)
-    eq(ex.player.frames.data["force:T"], c.tangential_force(frame_taus(c)))
+    eq(ex.contact.player.frames.data["force:T"], c.tangential_force(frame_taus(c)))
     ex.state.playing = False
-    assert len(ex.player.frames.data) == 0 and len(ex.player.profiles.data) == 0
+    assert len(ex.contact.player.frames.data) == 0 and len(ex.contact.player.profiles.data) == 0
 
 
 def test_the_player_writes_the_pages_tau_box_slider_and_formulas() -> None:
@@ -551,13 +563,13 @@ def test_the_player_writes_the_pages_tau_box_slider_and_formulas() -> None:
     ex = Explorer()
     doc = Document()
     doc.add_root(ex.view().get_root(doc))
-    args = ex.player.script.args
+    args = ex.contact.player.script.args
     assert args["entry"] is None  # nothing looked up before Play
     ex.state.playing = True
-    args = ex.player.script.args
-    assert args["entry"].value == ex.tau_slider.text(ex.state.tau)
-    assert args["slider"].value == ex.state.tau and args["slider"].end == ex.contact.tau_end
-    assert args["formula"].text == formulas(int(ex.contact.phase(ex.state.tau)))
+    args = ex.contact.player.script.args
+    assert args["entry"].value == ex.contact.controls.tau_slider.text(ex.state.tau)
+    assert args["slider"].value == ex.state.tau and args["slider"].end == ex.contact.shown.tau_end
+    assert args["formula"].text == formulas(int(ex.contact.shown.phase(ex.state.tau)))
     assert args["formulas"] == [formulas(p) for p in Phase]
     assert {args[k].document for k in ("entry", "slider", "formula")} == {doc}
 
@@ -568,17 +580,17 @@ def test_the_player_writes_the_pages_tau_box_slider_and_formulas() -> None:
 def test_physical_inputs_give_si_scales(ex: Explorer) -> None:
     s = ex.state
     s.param.update(R=0.005, H=2e-6, u0=3e-6, h=1e-6, omega=2 * math.pi * 30e3)
-    ex.material_select.value = "steel"
-    ex.physical_box.value = True
+    ex.contact.controls.material_select.value = "steel"
+    ex.contact.controls.physical_box.value = True
     c = Contact.from_physical(R=0.005, G=s.G, nu=s.nu, mu=s.mu, H=2e-6, u0=3e-6, h=1e-6,
                               omega=2 * math.pi * 30e3)
     assert (s.psi, s.tau0) == (c.psi, c.tau0)
-    assert ex.psi_slider.disabled and ex.tau0_slider.disabled
+    assert ex.contact.controls.psi_slider.disabled and ex.contact.controls.tau0_slider.disabled
     assert_sources_match_core(ex)
     assert f"{c.scales.T0:.4g} N" in [v for _, v in readout_rows(ex)]
-    table = read_csv(ex.csv_text("curves"))
+    table = read_csv(ex.contact.csv_text("curves"))
     np.testing.assert_allclose(table["T (N)"], table["T/T0"] * c.scales.T0, rtol=1e-9)
-    assert " N\na = " in ex.traction.caption.text
+    assert " N\na = " in ex.contact.traction.caption.text
 
 
 def test_each_change_is_shown_once_corrections_included(ex: Explorer, monkeypatch) -> None:
@@ -588,7 +600,7 @@ def test_each_change_is_shown_once_corrections_included(ex: Explorer, monkeypatc
     calls = {"refresh": 0, "update_tau": 0}
 
     def counting(name: str):
-        method = getattr(ex, name)
+        method = getattr(ex.contact, name)
 
         def counted() -> None:
             calls[name] += 1
@@ -596,28 +608,28 @@ def test_each_change_is_shown_once_corrections_included(ex: Explorer, monkeypatc
         return counted
 
     for name in calls:
-        monkeypatch.setattr(ex, name, counting(name))
+        monkeypatch.setattr(ex.contact, name, counting(name))
 
     def shown(refresh: int, update_tau: int) -> None:
         assert calls == {"refresh": refresh, "update_tau": update_tau}
         calls.update(refresh=0, update_tau=0)
         assert_sources_match_core(ex)
-        assert ex.tau_slider.value == ex.state.tau
+        assert ex.contact.controls.tau_slider.value == ex.state.tau
 
     ex.state.tau = 2.5
     shown(0, 1)
     ex.state.tau = 2.5  # already shown
     shown(0, 0)
-    ex.tau0_slider.value = 1.0  # tau = 2.5 is past the end of contact pi - 1
+    ex.contact.controls.tau0_slider.value = 1.0  # tau = 2.5 is past the end of contact pi - 1
     assert ex.state.tau == math.pi - 1.0
     shown(1, 0)
-    ex.physical_box.value = True  # psi and tau0 follow from the SI inputs
+    ex.contact.controls.physical_box.value = True  # psi and tau0 follow from the SI inputs
     c = Contact.from_physical(**{k: getattr(ex.state, k) for k in (
         "R", "G", "nu", "mu", "H", "u0", "h", "omega")})
     assert (ex.state.psi, ex.state.tau0, ex.state.tau) == (c.psi, c.tau0, math.pi - 1.0)
     shown(1, 0)
     ex.state.R *= 2  # the same psi and tau0, other SI scales (a*, T0)
-    assert ex.contact.scales.a_star == pytest.approx(c.scales.a_star * math.sqrt(2))
+    assert ex.contact.shown.scales.a_star == pytest.approx(c.scales.a_star * math.sqrt(2))
     shown(1, 0)
     ex.state.H = 4e-6  # psi and tau0 change with H; tau clamps into the new contact
     assert ex.state.tau0 == pytest.approx(math.asin(0.25)) and ex.state.tau == math.pi - 1.0
@@ -625,34 +637,46 @@ def test_each_change_is_shown_once_corrections_included(ex: Explorer, monkeypatc
 
 
 def test_invalid_physical_inputs_show_a_message(ex: Explorer) -> None:
-    ex.physical_box.value = True
+    ex.contact.controls.physical_box.value = True
     psi = ex.state.psi
     ex.state.h = 5 * ex.state.H  # h must be < H
-    pane = ex.physical_inputs.refusal  # said once, under the boxes, not above the plots
+    # said once, under the boxes, not above the plots
+    pane = ex.contact.controls.physical_inputs.refusal
     assert pane.visible and "(-H, H)" in pane.object and not ex.message.visible
-    assert ex.state.psi == psi and ex.contact == contact_of(ex)
+    assert ex.state.psi == psi and ex.contact.shown == contact_of(ex)
 
 
 # ------------------------------------------------------------------- motor
 
 
-def test_the_motor_card_is_built_when_opened_and_drives_the_scenes(ex: Explorer) -> None:
+def test_the_motor_card_is_built_when_opened_and_drives_the_scenes_when_asked(
+        ex: Explorer) -> None:
+    """The Motor card's contact reaches the plots only when its box is ticked (opening
+    the card used to replace the explorer's contact); unticked, the explorer's own
+    contact is back; a contact input the user changes ends the following."""
     assert ex.motor is None  # nothing built or computed until the card opens
+    own = (ex.state.psi, ex.state.tau0, ex.state.mu, ex.state.nu)
     ex.motor_card.collapsed = False
     assert ex.motor is not None
+    assert not ex.follow_motor.value
+    assert (ex.state.psi, ex.state.tau0, ex.state.mu, ex.state.nu) == own
+    assert {"motor_x0", "motor_rod", "motor_rotor"} <= set(ex.query())
+    ex.follow_motor.value = True  # the plots show the rotor's contact
     psi, tau0 = ex.motor.contact
     m = ex.motor.state
     assert (ex.state.psi, ex.state.tau0, ex.state.mu, ex.state.nu) == (psi, tau0, m.mu, m.nu)
     assert_sources_match_core(ex)
-    assert {"motor_x0", "motor_rod", "motor_rotor"} <= set(
-        {**ex.state.query(), **ex.motor.query()})
-    ex.follow_motor.value = False  # the scenes keep their own parameters
-    ex.psi_slider.value = 3.0
+    ex.motor.state.x0 = ex.motor.state.x0 / 2  # and follow it
+    assert ex.motor.contact[0] != psi and ex.state.psi == ex.motor.contact[0]
+    ex.follow_motor.value = False  # the explorer's own contact again
+    assert (ex.state.psi, ex.state.tau0, ex.state.mu, ex.state.nu) == own
+    assert_sources_match_core(ex)
+    ex.follow_motor.value = True
+    ex.contact.controls.psi_slider.value = 3.0  # the user takes the contact over
+    assert not ex.follow_motor.value and ex.state.psi == 3.0
     x0 = ex.motor.state.x0
     ex.motor.state.x0 = x0 / 2
-    assert ex.motor.contact[0] != psi and ex.state.psi == 3.0
-    ex.follow_motor.value = True  # and follow again
-    assert ex.state.psi == ex.motor.contact[0]
+    assert ex.state.psi == 3.0
 
 
 def test_a_motor_link_opens_the_motor_and_restores_it() -> None:
@@ -689,11 +713,11 @@ def test_contrast_ratio_matches_wcag_examples() -> None:
 
 @pytest.mark.parametrize("psi", [0.4, SQRT2_1])
 def test_time_axes_mark_the_papers_landmarks(ex: Explorer, psi: float) -> None:
-    ex.psi_slider.value = psi
+    ex.contact.controls.psi_slider.value = psi
     assert_sources_match_core(ex)  # opens every tab
     c = contact_of(ex)
     expected = [c.tau0, math.pi / 2, *([] if psi <= 1 else [c.tau1]), c.tau_end]
-    for scene in (ex.force, ex.radii, ex.motion):
+    for scene in (ex.contact.force, ex.contact.radii, ex.contact.motion):
         d = scene.landmarks.data
         assert d["x"] == expected
         assert d["label"] == ["τ₀", "π/2", *([] if psi <= 1 else ["τ₁"]), "π−τ₀"]
@@ -715,7 +739,7 @@ def test_the_spheres_are_drawn_from_core(psi: float, tau0: float, tau: float) ->
     drawn scale), arrows P / P0 and T / T0, the phase named in its colour."""
     ex = Explorer()
     ex.state.param.update(psi=psi, tau0=tau0, tau=tau)
-    c, s = contact_of(ex), ex.spheres.sources
+    c, s = contact_of(ex), ex.contact.spheres.sources
     H, u0 = spheres.drawn_amplitudes(c)
     assert H == spheres.DRIVE
     assert u0 == pytest.approx(min(spheres.DRIVE * psi * math.tan(c.theta0), spheres.MAX_SIDE))
@@ -748,13 +772,13 @@ def test_the_spheres_are_drawn_from_core(psi: float, tau0: float, tau: float) ->
 
 def test_the_spheres_note_states_the_scale() -> None:
     ex = Explorer()
-    assert ex.spheres.note.text == "not to scale: H drawn as 0.15 R"
+    assert ex.contact.spheres.note.text == "not to scale: H drawn as 0.15 R"
     ex.state.param.update(R=0.01, H=2e-6, u0=1e-6, h=1e-6, omega=1e5)
-    ex.physical_box.value = True
-    assert ex.spheres.note.text == f"displacements drawn ×{0.15 * 0.01 / 2e-6:.3g}"
-    ex.physical_box.value = False
+    ex.contact.controls.physical_box.value = True
+    assert ex.contact.spheres.note.text == f"displacements drawn ×{0.15 * 0.01 / 2e-6:.3g}"
+    ex.contact.controls.physical_box.value = False
     ex.state.psi = 1e4  # u0 beyond the drawing: shortened, and said so
-    assert ex.spheres.note.text == "not to scale: H drawn as 0.15 R, u₀ at most 0.45 R"
+    assert ex.contact.spheres.note.text == "not to scale: H drawn as 0.15 R, u₀ at most 0.45 R"
 
 
 def test_the_player_animates_the_spheres() -> None:
@@ -764,11 +788,11 @@ def test_the_player_animates_the_spheres() -> None:
     c = contact_of(ex)
     taus = frame_taus(c)
     for name, cols in spheres.drawing(c, taus).items():
-        data = ex.player.sprite_frames[name].data
+        data = ex.contact.player.sprite_frames[name].data
         for col, v in cols.items():
             assert list(np.asarray(data[col])) == list(v.ravel()), (name, col)
     ex.state.playing = False
-    assert all(len(src.data) == 0 for src in ex.player.sprite_frames.values())
+    assert all(len(src.data) == 0 for src in ex.contact.player.sprite_frames.values())
 
 
 # ---------------------------------------------------------- the paper's figures in full
@@ -778,12 +802,12 @@ def test_fig9_has_two_panels_and_draws_the_velocity_jumps(ex: Explorer) -> None:
     """v2 jumps at tau0 (from rest), at tau1 (partial stick to counter-slip) and at
     pi - tau0 (to rest): the grid holds a time just outside each jump, so the curve
     steps from core's value on one side to core's value on the other."""
-    ex.tabs.active = ex.tabbed.index(ex.motion)
+    ex.contact.tabs.active = ex.contact.tabbed.index(ex.contact.motion)
     c = contact_of(ex)
-    assert [f.title.text for f in ex.motion.figures] == [
+    assert [f.title.text for f in ex.contact.motion.figures] == [
         "Contact-centre velocity (Fig. 9a)", "Contact-centre displacement (Fig. 9b)"]
-    assert ex.motion.figure.children == ex.motion.figures  # one above the other
-    d = {k: np.asarray(v) for k, v in ex.motion.source.data.items()}
+    assert ex.contact.motion.figure.children == ex.contact.motion.figures  # one above the other
+    d = {k: np.asarray(v) for k, v in ex.contact.motion.source.data.items()}
     tau, v2 = d["tau"], d["v2"]
     eq(v2, c.centre_velocity(tau))
     eq(d["u2"], c.centre_displacement(tau))
@@ -798,14 +822,14 @@ def test_fig9_has_two_panels_and_draws_the_velocity_jumps(ex: Explorer) -> None:
         assert abs(v2[i] - v2[i - 1]) > 0.1, (jump, v2[i - 1], v2[i])  # drawn as a step
     assert v2[0] == 0 and v2[-1] == 0  # at rest outside the contact
     # the markers of each panel are drawn in that panel's range
-    m = ex.motion.marker.data
-    ranges = [ex.motion.figures[0].y_range, ex.motion.figures[1].y_range] * 2
+    m = ex.contact.motion.marker.data
+    ranges = [ex.contact.motion.figures[0].y_range, ex.contact.motion.figures[1].y_range] * 2
     assert m["lo"] == [r.start for r in ranges] and m["hi"] == [r.end for r in ranges]
 
 
 def test_fig8_marks_the_psi_of_fig7(ex: Explorer) -> None:
-    ex.tabs.active = ex.tabbed.index(ex.impulse)
-    d = ex.impulse.points.data
+    ex.contact.tabs.active = ex.contact.tabbed.index(ex.contact.impulse)
+    d = ex.contact.impulse.points.data
     psi = [0.4, 0.8, 1.0, 2.41, 6.46, 28.35]
     eq(d["psi"], psi)
     eq(d["ratio"], impulse_ratio(np.array(psi), ex.state.tau0))
@@ -813,32 +837,32 @@ def test_fig8_marks_the_psi_of_fig7(ex: Explorer) -> None:
 
 
 def test_fig4_shows_the_drive_and_the_fig6_times(ex: Explorer) -> None:
-    ex.tabs.active = ex.tabbed.index(ex.radii)
+    ex.contact.tabs.active = ex.contact.tabbed.index(ex.contact.radii)
     c = contact_of(ex)
-    drive = {k: np.asarray(v) for k, v in ex.radii.drive.data.items()}
+    drive = {k: np.asarray(v) for k, v in ex.contact.radii.drive.data.items()}
     eq(drive["uz"], np.sin(drive["tau"]))  # u_z0 / H (eq 3)
     inside = (drive["tau"] >= c.tau0) & (drive["tau"] <= c.tau_end)
     eq(drive["touch"][inside], drive["uz"][inside])
     assert np.isnan(drive["touch"][~inside]).all()
-    assert ex.radii.levels.data["y"] == [math.sin(c.tau0), 1.0]
-    disks = ex.radii.disks.data
+    assert ex.contact.radii.levels.data["y"] == [math.sin(c.tau0), 1.0]
+    disks = ex.contact.radii.disks.data
     eq(disks["tau"], [math.pi / 4, math.pi / 3, math.pi / 2, 7 * math.pi / 12,
                       17 * math.pi / 24, 3 * math.pi / 4])
     eq(disks["a"], c.contact_radius(disks["tau"]))
     assert disks["label"] == list("abcdef")
-    ex.tau0_slider.value = 1.2  # a short contact holds only some of the times
+    ex.contact.controls.tau0_slider.value = 1.2  # a short contact holds only some of the times
     c = contact_of(ex)
-    assert all(c.tau0 <= t <= c.tau_end for t in ex.radii.disks.data["tau"])
-    assert ex.radii.disks.data["label"] == ["c", "d"]  # pi/2, 7 pi/12 in [1.2, 1.94]
+    assert all(c.tau0 <= t <= c.tau_end for t in ex.contact.radii.disks.data["tau"])
+    assert ex.contact.radii.disks.data["label"] == ["c", "d"]  # pi/2, 7 pi/12 in [1.2, 1.94]
 
 
 def test_fig6_small_multiples_are_the_six_profiles_of_the_paper(ex: Explorer) -> None:
     """One click (the card) shows Fig. 6a-f: each panel the traction core gives at its
     preset's time, titled with the time and the phase (core's rule: 6f at tau1 is
     counter-slip)."""
-    assert ex.fig6_card.objects == []  # built on first opening
-    ex.fig6_card.collapsed = False
-    (pane,) = ex.fig6_card.objects
+    assert ex.contact.fig6_card.objects == []  # built on first opening
+    ex.contact.fig6_card.collapsed = False
+    (pane,) = ex.contact.fig6_card.objects
     titles = [fig.title.text for fig, *_ in pane.object.children]
     assert titles == ["6a: τ = π/4, slip", "6b: τ = π/3, slip", "6c: τ = π/2, slip",
                       "6d: τ = 7π/12, partial stick", "6e: τ = 17π/24, partial stick",
@@ -860,10 +884,11 @@ def test_each_preset_says_what_to_notice(ex: Explorer) -> None:
     notes' checkable claims hold."""
     assert set(NOTES) == set(PRESETS)
     for key in PRESETS:
-        ex.preset_select.value = key
-        assert ex.note.visible and ex.note.object == html.escape(NOTES[key])
-    ex.psi_slider.value = 3.0  # leaves the preset
-    assert not ex.note.visible
+        ex.contact.controls.preset_select.value = key
+        assert (ex.contact.controls.note.visible and
+                ex.contact.controls.note.object == html.escape(NOTES[key]))
+    ex.contact.controls.psi_slider.value = 3.0  # leaves the preset
+    assert not ex.contact.controls.note.visible
     c = Contact(SQRT2_1, math.pi / 6)
     assert c.tau1 == pytest.approx(3 * math.pi / 4)  # figs 4, 6f
     assert int(c.phase(math.pi / 4)) == Phase.SLIP == int(c.phase(math.pi / 2))  # 6a-6c
@@ -891,7 +916,7 @@ def test_the_view_is_chosen_by_the_url_and_kept_in_it() -> None:
     assert ex.view_name == "present" and ex.messages == [] and ex.state.psi == 3.0
     root = ex.view().get_root(Document())  # the one-screen page (sizes: browser test)
     assert root.select_one({"name": "spheres_badge"}) is not None
-    assert ex.spheres.badge.glyph.text_font_size == "26pt"
+    assert ex.contact.spheres.badge.glyph.text_font_size == "26pt"
     ex = Explorer(query={"view": "<b>x</b>"})
     assert ex.view_name == "" and ex.messages == [
         "view = '<b>x</b>' is unknown (known: present); the full page is shown"]

@@ -13,10 +13,11 @@ import pandas as pd
 import pytest
 from explorer_browser import wait_until
 
-from app.explorer import Explorer
-from app.player import frame_taus
-from app.scenes import CURVE_POINTS, PROFILE_POINTS, ImpulseScene
-from app.state import SQRT2_1
+from app.contact.impulse import ImpulseScene
+from app.contact.player import frame_taus
+from app.contact.state import SQRT2_1
+from app.kit.figures import CURVE_POINTS, PROFILE_POINTS
+from app.page.explorer import Explorer
 from core import Contact, impulse_ratio
 
 #: 10 significant digits are written: a value read back is within half a unit of the
@@ -106,7 +107,7 @@ def assert_parameters(csv: Csv, ex: Explorer) -> None:
 
 def test_curves_are_named_with_units_and_equal_core(ex: Explorer) -> None:
     ex.state.param.update(psi=6.46, tau0=0.3, mu=0.35, nu=0.25, tau=1.2)
-    csv = Csv(ex.csv_text("curves"))
+    csv = Csv(ex.contact.csv_text("curves"))
     assert csv.names == CURVE_NAMES
     assert_parameters(csv, ex)
     assert "tau" not in csv.parameters  # the curves are over the whole contact
@@ -134,7 +135,7 @@ def test_curves_are_named_with_units_and_equal_core(ex: Explorer) -> None:
 
 def test_curves_of_physical_inputs_add_si_columns_and_the_inputs(ex: Explorer) -> None:
     use_physical_inputs(ex)
-    csv = Csv(ex.csv_text("curves"))
+    csv = Csv(ex.contact.csv_text("curves"))
     assert csv.names == CURVE_NAMES + CURVE_SI_NAMES
     assert_parameters(csv, ex)
     c = contact_of(ex)
@@ -182,7 +183,7 @@ def assert_profile(csv: Csv, c: Contact, tau: float) -> None:
 def test_traction_profile_records_its_tau_and_equals_core(ex: Explorer, psi, tau0,
                                                           tau) -> None:
     ex.state.param.update(psi=psi, tau0=tau0, mu=0.25, nu=0.2, tau=tau)
-    csv = Csv(ex.csv_text("traction"))
+    csv = Csv(ex.contact.csv_text("traction"))
     assert csv.names == TRACTION_NAMES
     assert_parameters(csv, ex)
     assert csv.parameters["tau"] == ("rad", tau)
@@ -190,13 +191,13 @@ def test_traction_profile_records_its_tau_and_equals_core(ex: Explorer, psi, tau
     assert_profile(csv, c, tau)
     assert "eqs 18, 24, 33, 36" in csv.descriptions["tau_u/(mu p*)"]
     assert "eq 6" in csv.descriptions["p/p*"]
-    assert ex.csv_filename("traction").endswith(f"_tau{tau:.4g}.csv")
+    assert ex.contact.csv_filename("traction").endswith(f"_tau{tau:.4g}.csv")
 
 
 def test_traction_of_physical_inputs_adds_si_columns(ex: Explorer) -> None:
     use_physical_inputs(ex)
     ex.state.tau = 1.9
-    csv = Csv(ex.csv_text("traction"))
+    csv = Csv(ex.contact.csv_text("traction"))
     assert csv.names == TRACTION_NAMES + TRACTION_SI_NAMES
     assert_parameters(csv, ex)
     c = contact_of(ex)
@@ -213,10 +214,10 @@ def test_a_download_while_playing_is_the_profile_at_the_frame_shown(ex: Explorer
     tau is in the file and in the file's name."""
     ex.state.playing = True
     try:
-        wait_until(lambda: ex.clock_tau() != ex.state.tau, 5,
+        wait_until(lambda: ex.contact.animation.clock_tau() != ex.state.tau, 5,
                    what="the player to move on from the state's tau")
-        text = ex.csv_file("traction").getvalue()
-        name = ex.downloads["traction"].filename
+        text = ex.contact.csv_file("traction").getvalue()
+        name = ex.contact.controls.downloads["traction"].filename
         state_tau = ex.state.tau
     finally:
         ex.state.playing = False
@@ -230,10 +231,10 @@ def test_a_download_while_playing_is_the_profile_at_the_frame_shown(ex: Explorer
 
 def test_a_download_when_paused_is_the_profile_at_the_state_tau(ex: Explorer) -> None:
     ex.state.tau = 2.0
-    text = ex.csv_file("traction").getvalue()
-    assert text == ex.csv_text("traction")
+    text = ex.contact.csv_file("traction").getvalue()
+    assert text == ex.contact.csv_text("traction")
     assert Csv(text).parameters["tau"] == ("rad", 2.0)
-    assert ex.downloads["traction"].filename == ex.csv_filename("traction")
+    assert ex.contact.controls.downloads["traction"].filename == ex.contact.csv_filename("traction")
 
 
 # ----------------------------------------------------------------------- impulse
@@ -242,7 +243,7 @@ def test_a_download_when_paused_is_the_profile_at_the_state_tau(ex: Explorer) ->
 @pytest.mark.parametrize("log_psi", [False, True])
 def test_impulse_curve_is_named_and_equals_core(ex: Explorer, log_psi: bool) -> None:
     ex.state.param.update(psi=40.0, tau0=-0.4, mu=0.15, nu=0.35, log_psi=log_psi)
-    csv = Csv(ex.csv_text("impulse"))
+    csv = Csv(ex.contact.csv_text("impulse"))
     assert csv.names == ["psi", "T_imp/(mu P_imp)"]
     assert_parameters(csv, ex)
     if log_psi:
@@ -262,9 +263,9 @@ def test_impulse_curve_is_named_and_equals_core(ex: Explorer, log_psi: bool) -> 
 def test_file_names_hold_the_parameters_and_the_profile_its_tau(ex: Explorer) -> None:
     ex.state.param.update(psi=2.5, tau0=-0.25, mu=0.3, nu=0.25, tau=1.5)
     params = "psi2.5_tau0_-0.25_mu0.3_nu0.25"
-    assert ex.csv_filename("curves") == f"zharii_curves_{params}.csv"
-    assert ex.csv_filename("impulse") == f"zharii_impulse_{params}.csv"
-    assert ex.csv_filename("traction") == f"zharii_traction_{params}_tau1.5.csv"
+    assert ex.contact.csv_filename("curves") == f"zharii_curves_{params}.csv"
+    assert ex.contact.csv_filename("impulse") == f"zharii_impulse_{params}.csv"
+    assert ex.contact.csv_filename("traction") == f"zharii_traction_{params}_tau1.5.csv"
     for key in ("curves", "traction", "impulse"):
-        ex.csv_file(key)  # what a click does
-        assert ex.downloads[key].filename == ex.csv_filename(key)
+        ex.contact.csv_file(key)  # what a click does
+        assert ex.contact.controls.downloads[key].filename == ex.contact.csv_filename(key)

@@ -1,4 +1,4 @@
-"""No link, typed value or client message blanks a page or breaks a session (`app.guard`).
+"""No link, typed value or client message blanks a page or breaks a session (`app.page.guard`).
 
 In process: whole-page builds over every query key the app reads (the explorer's, the SI
 inputs', the motor's, the view) with extreme, non-finite, huge-integer, empty and
@@ -19,12 +19,12 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from test_sessions import served  # noqa: F401 (the fixture)
 
-import app.guard
-from app.explorer import Explorer
-from app.guard import BuildLimit, SafeLocation, build_page, quoted
+import app.page.guard
+from app.contact.state import QUERY_KEYS, parse_query
 from app.motor import QUERY_KEYS as MOTOR_KEYS
 from app.motor import MotorScene
-from app.state import QUERY_KEYS, parse_query
+from app.page.explorer import Explorer
+from app.page.guard import BuildLimit, SafeLocation, build_page, quoted
 
 #: The links of issue 22 that answered an empty page, and their neighbours.
 BAD_LINKS = [
@@ -115,7 +115,7 @@ def test_a_value_no_browser_sends_is_refused_once(slider: str, value: float) -> 
     """NaN used to recurse until Python's limit (nan != nan) in the state's handler."""
     ex = Explorer()
     before = {k: getattr(ex.state, k) for k in ("psi", "tau0", "mu", "nu", "tau", "speed")}
-    widget = getattr(ex, f"{slider}_slider")
+    widget = getattr(ex.contact.controls, f"{slider}_slider")
     target = getattr(widget, "_slider", widget)  # the browser's range input
     limit = sys.getrecursionlimit()
     sys.setrecursionlimit(400)  # a recursion would show as RecursionError quickly
@@ -181,7 +181,7 @@ def test_the_limit_forgets_idle_clients_and_stays_bounded() -> None:
 
 def test_a_client_past_its_page_builds_gets_the_short_page(served, monkeypatch) -> None:  # noqa: F811
     url, server = served
-    monkeypatch.setattr(app.guard, "BUILDS", BuildLimit(burst=2, rate=1e-6))
+    monkeypatch.setattr(app.page.guard, "BUILDS", BuildLimit(burst=2, rate=1e-6))
     texts = []
     for _ in range(3):
         before = {s.id for s in server.get_sessions("/main")}

@@ -17,9 +17,9 @@ import pytest
 from explorer_browser import open_explorer
 
 import core
-from app.explorer import Explorer
-from app.physical_inputs import FIELDS, REFUSED, box_text, display, to_si, to_user, warning
-from app.state import SI_KEYS, parse_query
+from app.contact.physical_inputs import FIELDS, REFUSED, box_text, display, to_si, to_user, warning
+from app.contact.state import SI_KEYS, parse_query
+from app.page.explorer import Explorer
 from core import DOMAIN, MATERIALS, Contact
 
 #: The SI value of one box unit: mm, GPa, µm, and kHz of f in rad/s.
@@ -33,12 +33,12 @@ def ex() -> Explorer:
 
 def box_values(ex: Explorer) -> dict[str, float]:
     """The numbers the boxes show (their text)."""
-    return {k: float(b.value) for k, b in ex.physical_inputs.boxes.items()}
+    return {k: float(b.value) for k, b in ex.contact.controls.physical_inputs.boxes.items()}
 
 
 def note(ex: Explorer, name: str) -> str:
     """The text under the box of `name` ('' when hidden), unescaped."""
-    pane = ex.physical_inputs.notes[name]
+    pane = ex.contact.controls.physical_inputs.notes[name]
     return html.unescape(pane.object) if pane.visible else ""
 
 
@@ -51,7 +51,7 @@ def physical_contact(ex: Explorer) -> Contact:
 
 
 def test_the_boxes_show_mm_gpa_micrometres_and_khz(ex: Explorer) -> None:
-    titles = [b.label.split(":")[0] for b in ex.physical_inputs.boxes.values()]
+    titles = [b.label.split(":")[0] for b in ex.contact.controls.physical_inputs.boxes.values()]
     assert titles == ["R (mm)", "G (GPa)", "H (µm)", "u₀ (µm)", "h (µm)", "f (kHz)"]
     s = ex.state
     shown = box_values(ex)
@@ -59,7 +59,7 @@ def test_the_boxes_show_mm_gpa_micrometres_and_khz(ex: Explorer) -> None:
                                   rel=1e-15)
     assert shown["omega"] == pytest.approx(s.omega / (2 * math.pi) / 1e3, rel=1e-15)
     # each number as its shortest text ("2", "79"), to 15 digits
-    assert {k: b.value for k, b in ex.physical_inputs.boxes.items()} == {
+    assert {k: b.value for k, b in ex.contact.controls.physical_inputs.boxes.items()} == {
         "R": "10", "G": "79", "H": "2", "u0": "1", "h": "1", "omega": "40"}
     assert all(v == float(f"{v:.15g}") for v in shown.values())
 
@@ -82,15 +82,15 @@ def test_the_conversion_is_exact_both_ways(name: str) -> None:
 
 
 def test_typed_values_reach_the_contact_in_si(ex: Explorer) -> None:
-    boxes = ex.physical_inputs.boxes
-    ex.physical_box.value = True
+    boxes = ex.contact.controls.physical_inputs.boxes
+    ex.contact.controls.physical_box.value = True
     for name, typed in (("R", "5"), ("G", "26"), ("H", "2.5"), ("u0", " 1.2 "), ("h", "-0.5"),
                         ("omega", "3e1")):
         boxes[name].value = typed
     expected = Contact.from_physical(R=0.005, G=26e9, nu=ex.state.nu, mu=ex.state.mu,
                                      H=2.5e-6, u0=1.2e-6, h=-0.5e-6,
                                      omega=2 * math.pi * 30e3)
-    assert ex.contact.scales == expected.scales
+    assert ex.contact.shown.scales == expected.scales
     assert (ex.state.psi, ex.state.tau0) == (expected.psi, expected.tau0)
     assert {k: b.value for k, b in boxes.items()} == {
         "R": "5", "G": "26", "H": "2.5", "u0": "1.2", "h": "-0.5", "omega": "30"}
@@ -100,15 +100,15 @@ def test_a_typed_decimal_is_kept_as_typed(ex: Explorer) -> None:
     """2.3 µm is the float of 2.3e-6 m, and the box shows "2.3" (not the float noise of
     2.3e-6 / 1e-6 = 2.3000000000000003); another text of the same value changes nothing
     and the box shows the value's own text."""
-    box = ex.physical_inputs.boxes["H"]
-    ex.physical_box.value = True
+    box = ex.contact.controls.physical_inputs.boxes["H"]
+    ex.contact.controls.physical_box.value = True
     psi = ex.state.psi
     for typed, H in (("2.1", 2.1e-6), ("2.2", 2.2e-6), ("2.3", 2.3e-6)):
         box.value = typed
         assert ex.state.H == H and box.value == typed
     assert 2.3e-6 / 1e-6 != 2.3 and box_text(FIELDS["H"], 2.3e-6) == "2.3"
     assert ex.state.psi == pytest.approx(psi * 2.0 / 2.3, rel=1e-14)  # psi ~ u0 / H
-    assert ex.contact.psi == physical_contact(ex).psi
+    assert ex.contact.shown.psi == physical_contact(ex).psi
     box.value = "2.30"  # the same value: nothing changes, the box shows its text
     assert ex.state.H == 2.3e-6 and note(ex, "H") == ""
     assert box.value in ("2.30", "2.3")  # (set back once the browser's entry is handled)
@@ -134,18 +134,19 @@ def test_a_value_outside_its_sensible_range_is_used_with_a_warning(
         ex: Explorer, name: str, typed: float, side: str) -> None:
     f = FIELDS[name]
     assert note(ex, name) == ""
-    ex.physical_inputs.boxes[name].value = repr(typed)
+    ex.contact.controls.physical_inputs.boxes[name].value = repr(typed)
     assert getattr(ex.state, name) == to_si(f, typed)  # used
     lo, hi = f.sensible
     assert note(ex, name) == (f"{f.symbol} = {typed:g} {f.unit} is {side} the sensible "
                               f"range {lo:g} … {hi:g} {f.unit}: is the unit right? "
                               "(a warning only: the value is used)")
-    ex.physical_inputs.boxes[name].value = box_text(f, ex.state.param[name].default)
+    boxes = ex.contact.controls.physical_inputs.boxes
+    boxes[name].value = box_text(f, ex.state.param[name].default)
     assert note(ex, name) == ""
 
 
 def test_a_value_core_refuses_is_explained_under_its_box_and_kept_out(ex: Explorer) -> None:
-    box = ex.physical_inputs.boxes["H"]
+    box = ex.contact.controls.physical_inputs.boxes["H"]
     H = ex.state.H
     box.value = "0"
     lo, hi = (DOMAIN["H"].lo * 1e6, DOMAIN["H"].hi * 1e6)
@@ -156,7 +157,7 @@ def test_a_value_core_refuses_is_explained_under_its_box_and_kept_out(ex: Explor
         assert note(ex, "H") == (f"H (µm) must be a real number in [{lo:g}, {hi:g}], "
                                  f"got {shown}")
         assert ex.state.H == H and box.value == "2"
-    assert "&lt;b&gt;" in ex.physical_inputs.notes["H"].object  # shown as text
+    assert "&lt;b&gt;" in ex.contact.controls.physical_inputs.notes["H"].object  # shown as text
     box.value = "nan"
     assert note(ex, "H").startswith("H (µm) must be a finite number")
     box.value = "3"
@@ -164,10 +165,10 @@ def test_a_value_core_refuses_is_explained_under_its_box_and_kept_out(ex: Explor
 
 
 def test_inputs_core_refuses_together_show_core_words_under_the_boxes(ex: Explorer) -> None:
-    ex.physical_box.value = True
-    psi, pane = ex.state.psi, ex.physical_inputs.refusal
+    ex.contact.controls.physical_box.value = True
+    psi, pane = ex.state.psi, ex.contact.controls.physical_inputs.refusal
     assert not pane.visible
-    ex.physical_inputs.boxes["h"].value = "3"  # h >= H = 2 µm
+    ex.contact.controls.physical_inputs.boxes["h"].value = "3"  # h >= H = 2 µm
     with pytest.raises(ValueError) as err:
         core.PhysicalInputs(R=0.01, G=ex.state.G, nu=ex.state.nu, mu=ex.state.mu, H=2e-6,
                             u0=1e-6, h=3e-6, omega=ex.state.omega)
@@ -176,8 +177,8 @@ def test_inputs_core_refuses_together_show_core_words_under_the_boxes(ex: Explor
     assert "&lt;" in pane.object and "<" not in pane.object  # shown as text
     assert ex.state.psi == psi and not ex.message.visible  # said once, here
     assert warning(FIELDS["h"], ex.state.h) == note(ex, "h") == ""  # 3 µm is sensible
-    ex.physical_inputs.boxes["H"].value = "4"
-    assert not pane.visible and ex.contact.scales == physical_contact(ex).scales
+    ex.contact.controls.physical_inputs.boxes["H"].value = "4"
+    assert not pane.visible and ex.contact.shown.scales == physical_contact(ex).scales
 
 
 # -------------------------------------------------------------------- material
@@ -186,28 +187,29 @@ def test_inputs_core_refuses_together_show_core_words_under_the_boxes(ex: Explor
 def test_a_material_switches_the_physical_inputs_on(ex: Explorer) -> None:
     s = ex.state
     assert not s.physical and (s.mu, s.nu) == (0.2, 0.3)
-    ex.material_select.value = "glass"
+    ex.contact.controls.material_select.value = "glass"
     m = MATERIALS["glass"]
-    assert s.physical and ex.physical_box.value  # never mu and nu of a dimensionless contact
+    # never mu and nu of a dimensionless contact
+    assert s.physical and ex.contact.controls.physical_box.value
     assert (s.G, s.nu, s.mu) == (m["G"], m["nu"], m["mu"])
-    assert float(ex.physical_inputs.boxes["G"].value) == m["G"] / 1e9
-    assert ex.contact.scales == physical_contact(ex).scales
-    assert ex.psi_slider.disabled and ex.state.query()["material"] == "glass"
-    ex.mu_slider.value = 0.25  # another mu: no longer glass
-    assert s.material == "custom" == ex.material_select.value
+    assert float(ex.contact.controls.physical_inputs.boxes["G"].value) == m["G"] / 1e9
+    assert ex.contact.shown.scales == physical_contact(ex).scales
+    assert ex.contact.controls.psi_slider.disabled and ex.state.query()["material"] == "glass"
+    ex.contact.controls.mu_slider.value = 0.25  # another mu: no longer glass
+    assert s.material == "custom" == ex.contact.controls.material_select.value
     assert "material" not in ex.state.query()
-    ex.material_select.value = "steel"
-    ex.preset_select.value = "fig6c"  # a preset: dimensionless, mu 0.2, nu 0.3
-    assert not s.physical and s.material == "custom" == ex.material_select.value
+    ex.contact.controls.material_select.value = "steel"
+    ex.contact.controls.preset_select.value = "fig6c"  # a preset: dimensionless, mu 0.2, nu 0.3
+    assert not s.physical and s.material == "custom" == ex.contact.controls.material_select.value
 
 
 # ------------------------------------------------------------------------- URL
 
 
 def test_a_link_restores_the_physical_inputs(ex: Explorer) -> None:
-    ex.material_select.value = "steel"
+    ex.contact.controls.material_select.value = "steel"
     for name, typed in (("R", "5"), ("H", "2.5"), ("u0", "1.2"), ("h", "-0.5"), ("omega", "30")):
-        ex.physical_inputs.boxes[name].value = typed
+        ex.contact.controls.physical_inputs.boxes[name].value = typed
     q = ex.state.query()
     assert q["physical"] == "1" and q["material"] == "steel"
     assert "psi" not in q and "tau0" not in q  # they follow from the inputs
@@ -218,11 +220,12 @@ def test_a_link_restores_the_physical_inputs(ex: Explorer) -> None:
     assert not shared.message.visible and shared.state.query() == q
     expected = Contact.from_physical(R=0.005, G=79.3e9, nu=0.29, mu=0.2, H=2.5e-6,
                                      u0=1.2e-6, h=-0.5e-6, omega=2 * math.pi * 30e3)
-    assert shared.contact.scales == ex.contact.scales == expected.scales
+    assert shared.contact.shown.scales == ex.contact.shown.scales == expected.scales
     assert (shared.state.psi, shared.state.tau0) == (expected.psi, expected.tau0)
     assert box_values(shared) == box_values(ex)
-    assert shared.material_select.value == "steel" and not shared.physical_card.collapsed
-    assert shared.physical_box.value and shared.psi_slider.disabled
+    ui = shared.contact.controls
+    assert ui.material_select.value == "steel" and not ui.physical_card.collapsed
+    assert ui.physical_box.value and ui.psi_slider.disabled
 
 
 @pytest.mark.parametrize(("query", "fragment"), [
@@ -252,7 +255,8 @@ def test_physical_inputs_core_refuses_in_a_link_are_left_off() -> None:
     assert values["physical"] is False and values["h"] == 5e-6
     ex = Explorer(query=query)
     assert not ex.state.physical and ex.state.h == 5e-6  # kept, for the boxes to show
-    assert ex.physical_inputs.refusal.visible and ex.physical_inputs.boxes["h"].value == "5"
+    assert (ex.contact.controls.physical_inputs.refusal.visible and
+            ex.contact.controls.physical_inputs.boxes["h"].value == "5")
 
 
 # --------------------------------------------------------------------- browser

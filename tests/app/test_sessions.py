@@ -23,10 +23,10 @@ from test_security import _connect, _server_info
 from tornado.httpclient import AsyncHTTPClient
 from tornado.ioloop import IOLoop
 
-from app.explorer import Explorer
+from app.contact.state import ExplorerState
 from app.methods import MethodsScene
+from app.page.explorer import Explorer
 from app.serve import MAIN, server_options
-from app.state import ExplorerState
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -9,8 +9,8 @@ from bokeh.document import Document
 from bokeh.models import ColumnDataSource
 from bokeh.protocol import Protocol
 
-from app.explorer import Explorer
-from app.wire import InlineColumn, inline
+from app.kit.wire import InlineColumn, inline
+from app.page.explorer import Explorer
 
 #: Values that a lossy or text encoding would change.
 AWKWARD = np.array([0.1, -0.0, 5e-324, 1.7976931348623157e308, np.nan, np.inf, -np.inf,
@@ -70,7 +70,7 @@ def test_a_psi_move_sends_no_buffers_and_the_browser_gets_core_values(ex: Explor
     ex.view().server_doc(doc)
     events = []
     doc.on_change(events.append)
-    ex.psi_slider._slider.value = 2.5
+    ex.contact.controls.psi_slider._slider.value = 2.5
     msg = Protocol().create("PATCH-DOC", events)
     assert msg.buffers == []
     decoded = 0

@@ -17,12 +17,12 @@ from bokeh.models import ColorBar
 from test_document import assert_sources_match_core, contact_of
 
 import app.methods.data
-from app.explorer import Explorer
+from app.kit.figures import CURVE_POINTS
 from app.kit.jobs import RUNNER
 from app.methods import DEFAULT_METHODS, MethodsScene
 from app.methods.results import FILES, RESULTS
 from app.methods.speed_chart import CHECKS, PEERS, STYLE
-from app.scenes import CURVE_POINTS
+from app.page.explorer import Explorer
 from core import Contact
 
 eq = np.testing.assert_array_equal
@@ -81,18 +81,18 @@ def test_methods_rerun_live_after_a_change(ex: Explorer) -> None:
     ex.methods.card.collapsed = False
     ex.methods.choice.value = ["lammps_mindlin"]
     ex.methods.live.value = True
-    ex.psi_slider.value = 0.5
+    ex.contact.controls.psi_slider.value = 0.5
     ran(ex)
     assert ex.methods.results[0].T.shape == ex.methods.source.data["ys"][0].shape
     x = ex.methods.source.data["ys"][0]
-    ex.psi_slider.value = 5.0
+    ex.contact.controls.psi_slider.value = 5.0
     ran(ex)
     assert not np.array_equal(ex.methods.source.data["ys"][0][:50], x[:50])
 
 
 def test_methods_computes_nothing_while_collapsed(ex: Explorer) -> None:
     assert ex.methods.card.collapsed and ex.methods.exact.data["T"] == []
-    ex.psi_slider.value = 5.0
+    ex.contact.controls.psi_slider.value = 5.0
     assert ex.methods.exact.data["T"] == []
     ex.methods.card.collapsed = False  # expanding catches up with the parameters
     c = contact_of(ex)
@@ -100,7 +100,7 @@ def test_methods_computes_nothing_while_collapsed(ex: Explorer) -> None:
     # and draws the methods chosen by default, once
     ran(ex)
     assert ex.methods.source.data["label"] == list(DEFAULT_METHODS)
-    ex.psi_slider.value = 0.7
+    ex.contact.controls.psi_slider.value = 0.7
     c = contact_of(ex)
     eq(ex.methods.exact.data["T"], c.tangential_force(c.tau_grid(CURVE_POINTS)))
 
@@ -111,7 +111,7 @@ def test_missing_numerics_shows_a_note(monkeypatch: pytest.MonkeyPatch) -> None:
     card = ex.methods.view()
     card.collapsed = False  # built when opened
     assert "not available" in card.objects[0].object
-    ex.psi_slider.value = 3.0  # the rest still works
+    ex.contact.controls.psi_slider.value = 3.0  # the rest still works
     assert_sources_match_core(ex)
 
 

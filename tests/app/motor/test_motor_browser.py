@@ -9,7 +9,7 @@ import pytest
 from explorer_browser import column, open_explorer
 from test_browser import errors, psi_of, wait_for_new
 
-from app.scenes import CURVE_POINTS
+from app.kit.figures import CURVE_POINTS
 from core import Contact
 from core.motor import Motor, Rod
 

@@ -9,15 +9,12 @@ from __future__ import annotations
 
 import html
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import panel as pn
 
-from app.phases import STYLES
+from app.contact.phases import STYLES
+from app.contact.view import ContactView
 from core import Phase
-
-if TYPE_CHECKING:
-    from app.explorer import Explorer
 
 #: Colour key of the contact disc (the figure has no legend, see DiscScene).
 DISC_KEY = " ".join(
@@ -25,13 +22,6 @@ DISC_KEY = " ".join(
     for p, name in ((Phase.FULL_STICK, "stick"), (Phase.SLIP, "slip"),
                     (Phase.COUNTER_SLIP, "counter-slip")))
 
-#: The note under the preset selector: what to notice in the figure on screen.
-NOTE_STYLE = {"background": "#eef5fb", "color": "#1b3a57", "border-left": "4px solid #0072B2",
-              "padding": "0.4em 0.8em", "font-size": "1rem"}
-
-#: The warning box above the plots (rejected URL values).
-MESSAGE_STYLE = {"background": "#fff3cd", "color": "#664d03", "border": "1px solid #ffe69c",
-                 "border-radius": "6px", "padding": "0.6em 1em"}
 
 #: Colour of the ring around the control the keyboard is on (6.3:1 on white).
 FOCUS_COLOR = "#1A5FB4"
@@ -78,15 +68,6 @@ HEADING_CSS = "h1 { font-size: inherit; font-weight: inherit; margin: 0; }"
 #: The sidebar's headings (<h2>, the level below the page's title) at the size of an <h3>.
 SUBHEADING_CSS = "h2 { font-size: 1.17em; }"
 
-#: Tabs' stylesheet: their titles wrap onto a second row on a narrow screen (BokehJS
-#: scrolls the row sideways, hiding the last titles on a phone).
-TAB_ROW_CSS = ".bk-headers-wrapper { flex-wrap: wrap; }"
-
-#: The formula card's stylesheet: an equation's type (KaTeX's 1.21 em) shrinks with the
-#: card's width below about 500 px, so that the longest (25 em wide) fits a phone's card.
-FORMULA_CSS = (":host { container-type: inline-size; }"
-               " .katex-display > .katex { font-size: min(1.21em, 3.9cqw); }")
-
 
 def heading() -> pn.pane.HTML:
     """The page's one <h1>, `TITLE`, in the header bar's type."""
@@ -113,7 +94,7 @@ class Keys:
     opposite: bool = False
 
 
-#: The keys the page answers to (the sliders are `app.widgets.LabelledSlider`s, range
+#: The keys the page answers to (the sliders are `app.kit.widgets.LabelledSlider`s, range
 #: inputs with Page Up / Down added; text boxes, menus, check boxes and buttons are the
 #: browser's own).  The curve tabs are not listed: BokehJS's tabs answer to the mouse
 #: only.
@@ -177,40 +158,42 @@ META = {"viewport": "width=device-width, initial-scale=1",
                        "oblique frictional contact (O. Yu. Zharii, 1996)"}
 
 
-def page(ex: Explorer) -> pn.Column:
+def page(contact: ContactView, message: pn.viewable.Viewable,
+         cards: list[pn.viewable.Viewable]) -> pn.Column:
     """The explorer's page: a header, the controls in a sidebar, the scenes beside it (a
     plain Panel layout: a template's header, modal and theming tripled the server's work
-    per page load); on a narrow screen the sidebar stacks above the scenes."""
+    per page load); on a narrow screen the sidebar stacks above the scenes.  `contact`
+    gives the scenes and controls, `message` is the page's banner, `cards` the cards
+    below the scenes (Fig. 6 in full, Methods, Motor)."""
+    ui = contact.controls
     sidebar = [
-        ex.preset_select,
-        ex.note,
-        pn.Row(ex.reset_button, ex.downloads["curves"]),
-        ex.psi_slider, ex.tau0_slider, ex.mu_slider, ex.nu_slider,
+        ui.preset_select,
+        ui.note,
+        pn.Row(ui.reset_button, ui.downloads["curves"]),
+        ui.psi_slider, ui.tau0_slider, ui.mu_slider, ui.nu_slider,
         pn.pane.Markdown("## Time", stylesheets=[SUBHEADING_CSS]),
-        ex.tau_slider,
-        pn.Row(ex.play_button, ex.step_button),
-        ex.speed_slider,
-        ex.log_box,
-        ex.physical_card,
-        pn.Row(ex.downloads["traction"], ex.downloads["impulse"]),
+        ui.tau_slider,
+        pn.Row(ui.play_button, ui.step_button),
+        ui.speed_slider,
+        ui.log_box,
+        ui.physical_card,
+        pn.Row(ui.downloads["traction"], ui.downloads["impulse"]),
         keyboard_card(),
     ]
     main = [
-        ex.message,
+        message,
         pn.FlexBox(
-            card(pn.pane.Bokeh(ex.spheres.figure, sizing_mode="stretch_width"),
+            card(pn.pane.Bokeh(contact.spheres.figure, sizing_mode="stretch_width"),
                  title="The two spheres (Fig. 2)", flex="0 1 440px"),
-            card(pn.pane.Bokeh(ex.traction.figure, sizing_mode="stretch_width"),
+            card(pn.pane.Bokeh(contact.traction.figure, sizing_mode="stretch_width"),
                  title="Traction profile (Fig. 6)", flex="3 1 560px"),
-            card(pn.pane.Bokeh(ex.disc.figure), pn.pane.HTML(DISC_KEY),
+            card(pn.pane.Bokeh(contact.disc.figure), pn.pane.HTML(DISC_KEY),
                  title="Contact disc", flex="0 0 380px"),
-            card(ex.formulas, title="Formulas of the current phase", flex="2 1 480px"),
-            card(ex.readout, title="Derived quantities", flex="1 1 380px"),
-            card(ex.tabs, title="Curves over the contact", flex="1 1 100%"),
+            card(ui.formulas, title="Formulas of the current phase", flex="2 1 480px"),
+            card(contact.readout, title="Derived quantities", flex="1 1 380px"),
+            card(contact.tabs, title="Curves over the contact", flex="1 1 100%"),
             sizing_mode="stretch_width", align_content="flex-start"),
-        ex.fig6_card,
-        ex.methods.view(),
-        ex.motor_card,
+        *cards,
     ]
     use_css()
     return pn.Column(

@@ -3,7 +3,7 @@
 The paper's Fig. 6 shows tau_u(r) for psi = sqrt 2 + 1, tau0 = pi / 6 at six times, three
 while loading (slip) and three while unloading (partial stick, then counter-slip at
 tau1 = 3 pi / 4).  Each small plot is `TractionScene.profiles` of the contact of its
-preset (`app.state.PRESETS`, fig6a to fig6f): the same numbers as the big traction plot
+preset (`app.contact.state.PRESETS`, fig6a to fig6f): the same numbers as the big traction plot
 shows for that preset.  The figures are built on first use (the card opening them).
 """
 
@@ -15,9 +15,10 @@ import numpy as np
 from bokeh.layouts import gridplot
 from bokeh.models import ColumnDataSource
 
-from app.phases import STICK_COLOR, style
-from app.scenes import TractionScene, new_figure, style_figure
-from app.state import PRESETS
+from app.contact.phases import STICK_COLOR, style
+from app.contact.state import PRESETS
+from app.contact.traction import TractionScene
+from app.kit.figures import new_figure, style_figure
 from core import Contact
 
 #: The presets of Fig. 6, in the paper's order.

@@ -1,13 +1,13 @@
 """The "Physical inputs" card: the SI inputs of `core.Contact.from_physical` in the units
 people think in.
 
-The state (`app.state.ExplorerState`) keeps R, G, H, u0, h in SI units and the angular
+The state (`app.contact.state.ExplorerState`) keeps R, G, H, u0, h in SI units and the angular
 frequency omega in rad/s; the boxes show and take R in mm, G in GPa, H, u0 and h in µm
 and the frequency f = omega / (2 pi) in kHz.  `FIELDS` is the one table of the boxes:
 unit and the advisory sensible range of each.  The pure functions below
 convert between the two (`to_si`, `to_user`, `display`), check a typed value against
 core's allowed range (`parse_entry`, the range from `core.DOMAIN` via
-`app.state.domain`, written in the box's unit) and word the advisory warning
+`app.contact.state.domain`, written in the box's unit) and word the advisory warning
 (`warning`) and core's refusal of the inputs taken together (`refusal`).
 
 A box is a text box and takes any number: a text that is not a number, or a value
@@ -32,8 +32,8 @@ import panel as pn
 import param
 
 import core
-from app.state import SI_KEYS, ExplorerState, domain
-from app.widgets import ERROR_STYLE, LabelledCheckbox, show_later, text_html, typed_value
+from app.contact.state import SI_KEYS, ExplorerState, domain
+from app.kit.widgets import ERROR_STYLE, LabelledCheckbox, show_later, text_html, typed_value
 from core import Interval
 
 #: Style of an advisory warning under a box (dark amber on white: 8.5:1 contrast).
@@ -129,7 +129,7 @@ def box_text(field: Field, si: float) -> str:
 
 
 def limits(field: Field) -> Interval:
-    """Core's allowed range of `field` (`core.DOMAIN` via `app.state.domain`), in
+    """Core's allowed range of `field` (`core.DOMAIN` via `app.contact.state.domain`), in
     `field.unit`."""
     d = domain(field.name)
     lo = None if d.lo is None else display(field, d.lo)

@@ -16,7 +16,7 @@ The contact patch is drawn with core's a / a* on that exaggerated scale.
 
 Every number comes from `core` through `drawing(c, taus)`, which gives each source's
 columns at K times as arrays of shape (K, n): `update_tau` shows one time, the browser's
-player (`app.player`) copies the frames of a whole contact.
+player (`app.contact.player`) copies the frames of a whole contact.
 """
 
 from __future__ import annotations
@@ -37,9 +37,9 @@ from bokeh.models import (
 )
 from bokeh.plotting import figure
 
-from app.phases import STICK_COLOR, style
-from app.scenes import FRAME_LEVEL, Scene, draw, png_name, style_figure
-from app.wire import column, inline
+from app.contact.phases import STICK_COLOR, style
+from app.kit.figures import FRAME_LEVEL, Scene, draw, png_name, style_figure
+from app.kit.wire import column, inline
 from core import Contact
 from core.clock import half_sines
 

@@ -4,7 +4,7 @@ In the header, the link to the full page (it keeps the parameters); below it a r
 the controls a teacher uses in front of a class (preset, Play, Step, Reset, speed, the
 time); then, without scrolling, the two spheres with their phase badge, the traction
 profile with the contact disc beside it, and T(tau).  The same scenes and controls as
-the full page (`app.layout.page`): this module only arranges and sizes them.
+the full page (`app.page.layout.page`): this module only arranges and sizes them.
 
 The page is one screen high (`100vh`) and the scenes take the height the header and
 the controls leave: the plots grow with the screen (at 1280 x 720 the spheres are about
@@ -18,20 +18,16 @@ have the aspect of their ranges.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import panel as pn
 
-from app import layout
-from app.scenes import place_legend
-
-if TYPE_CHECKING:
-    from app.explorer import Explorer
+from app.contact.view import ContactView
+from app.kit.figures import place_legend
+from app.page import layout
 
 #: The name of the view in the URL (`view=present`).
 VIEW = "present"
 
-#: The spheres' plot outside its frame (px, with the type of `app.scenes.style_figure`):
+#: The spheres' plot outside its frame (px, with the type of `app.kit.figures.style_figure`):
 #: (across, down): its borders across; its title, toolbar and borders down.
 SPHERES_RIM = (10, 37)
 #: The disc's plot outside its frame (px): (across, down): the y axis with its label and
@@ -72,11 +68,13 @@ def aspect(fig) -> float:
     return (fig.x_range.end - fig.x_range.start) / (fig.y_range.end - fig.y_range.start)
 
 
-def presentation(ex: Explorer) -> pn.Column:
-    """The one-screen page of `ex`'s scenes and controls."""
-    spheres = ex.spheres.figure
-    ex.spheres.badge.glyph.text_font_size = BADGE_FONT
-    traction, disc, force = ex.traction.figure, ex.disc.figure, ex.force.figure
+def presentation(contact: ContactView, message: pn.viewable.Viewable) -> pn.Column:
+    """The one-screen page of `contact`'s scenes and controls, with the page's banner
+    `message`."""
+    ui = contact.controls
+    spheres = contact.spheres.figure
+    contact.spheres.badge.glyph.text_font_size = BADGE_FONT
+    traction, disc, force = contact.traction.figure, contact.disc.figure, contact.force.figure
     for fig in (spheres, traction, disc, force):
         fig.sizing_mode, fig.margin = "stretch_both", 0
         fig.min_width = fig.max_width = None
@@ -101,13 +99,13 @@ def presentation(ex: Explorer) -> pn.Column:
         layout.heading(),
         full, styles={"background": layout.HEADER_STYLE["background"]},
         sizing_mode="stretch_width")
-    for widget in (ex.preset_select, ex.speed_slider):  # as wide as their columns
+    for widget in (ui.preset_select, ui.speed_slider):  # as wide as their columns
         widget.param.update(width=None, sizing_mode="stretch_width")
     controls = pn.FlexBox(
-        pn.Column(ex.preset_select, styles={"flex": "1 1 340px"}),  # (the longest name)
-        pn.Row(ex.play_button, ex.step_button, ex.reset_button, align="end"),
-        pn.Column(ex.speed_slider, styles={"flex": "0 1 200px"}),
-        pn.Column(ex.tau_slider, styles={"flex": "2 1 320px"}),
+        pn.Column(ui.preset_select, styles={"flex": "1 1 340px"}),  # (the longest name)
+        pn.Row(ui.play_button, ui.step_button, ui.reset_button, align="end"),
+        pn.Column(ui.speed_slider, styles={"flex": "0 1 200px"}),
+        pn.Column(ui.tau_slider, styles={"flex": "2 1 320px"}),
         align_items="flex-end", sizing_mode="stretch_width")
     scenes = pn.Row(
         pn.pane.Bokeh(spheres),
@@ -122,5 +120,5 @@ def presentation(ex: Explorer) -> pn.Column:
                 "gap": f"{GAP}px"})
     layout.use_css()
     # one screen high: the scenes take what the header and the controls leave
-    return pn.Column(header, controls, ex.message, scenes, sizing_mode="stretch_both",
+    return pn.Column(header, controls, message, scenes, sizing_mode="stretch_both",
                      styles={"height": "100vh"})

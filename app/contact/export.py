@@ -23,7 +23,8 @@ from importlib.metadata import PackageNotFoundError, version
 
 import numpy as np
 
-from app.scenes import ForceScene, MotionScene, RadiiScene, TractionScene
+from app.contact.curves import ForceScene, MotionScene, RadiiScene
+from app.contact.traction import TractionScene
 from core import Contact
 
 SOURCE = ("O. Yu. Zharii, An exact solution of a time-dependent frictional contact problem"

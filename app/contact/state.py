@@ -2,7 +2,7 @@
 
 `ExplorerState` holds the four dimensionless numbers of the problem (psi, tau0, mu,
 nu), the current time tau, the animation settings and the optional physical inputs (SI
-units: R, H, u0, h in m, G in Pa, omega in rad/s; `app.physical_inputs` shows them in
+units: R, H, u0, h in m, G in Pa, omega in rad/s; `app.contact.physical_inputs` shows them in
 mm, GPa, µm and kHz).  It turns them into a `core.Contact` (the only place the app
 builds one) and knows how to read and write them as a URL query string.  All physics
 lives in `core`.

@@ -7,7 +7,7 @@ check the ones that are numbers: phases, signs, where the stick disc starts and 
 
 from __future__ import annotations
 
-#: Per preset key of `app.state.PRESETS`: what to look at.
+#: Per preset key of `app.contact.state.PRESETS`: what to look at.
 NOTES: dict[str, str] = {
     "fig4": "The contact radius a grows while the spheres approach and shrinks as they "
             "part. The stick disc b appears at π/2, when unloading starts, as large as "

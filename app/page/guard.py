@@ -24,7 +24,7 @@ from typing import Any
 import panel as pn
 from panel.io.location import Location
 
-from app.explorer import Explorer
+from app.page.explorer import Explorer
 
 log = logging.getLogger(__name__)
 

@@ -1,0 +1,106 @@
+"""The animation of one contact: Play, Pause, Step and Speed over `ContactView`.
+
+The browser plays the frames (`app.contact.player`); the server follows the same clock,
+progress = start + speed * elapsed / CONTACT_SECONDS, for the tau a pause, a speed change
+or a parameter change lands on.  A contact lasts CONTACT_SECONDS at speed 1.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any, Protocol
+
+import param
+from panel.io import hold
+
+from app.contact.player import Player, frame_index, frame_taus
+from app.contact.state import ExplorerState
+from core import Contact
+
+CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
+
+
+class Animated(Protocol):
+    """What an animation plays: a state, the contact on screen, the player of its frames,
+    the controls showing Play/Pause (`app.contact.view.ContactView`)."""
+
+    state: ExplorerState
+    shown: Contact
+    player: Player
+    controls: Any
+
+    def show_state(self) -> None: ...
+
+
+class Animation(param.Parameterized):
+    """Plays the contact of `view` in the browser, following its state's `playing` and
+    `speed`."""
+
+    def __init__(self, view: Animated) -> None:
+        super().__init__()
+        self.view = view
+        #: (progress, time.monotonic(), speed) when the player last (re)started
+        self.started = (0.0, 0.0, 1.0)
+        view.state.param.watch(self._on_playing, "playing")
+        view.state.param.watch(self._on_speed, "speed")
+
+    def step(self, seconds: float = 1 / 30) -> float:
+        """Advance tau as `seconds` of animation at the current speed; wrap at the end.
+
+        Returns the new tau.  The last frame of a contact lands exactly on pi - tau0;
+        the next one starts again at tau0.  Stepping pauses a running animation.
+        """
+        state, c = self.view.state, self.view.shown
+        state.playing = False
+        if state.tau >= c.tau_end:
+            new = c.tau0
+        else:
+            dtau = state.speed * (c.tau_end - c.tau0) * seconds / CONTACT_SECONDS
+            new = min(state.tau + dtau, c.tau_end)
+        state.tau = new
+        return new
+
+    def progress_of(self, tau: float) -> float:
+        """Where tau lies in the contact, in [0, 1)."""
+        c = self.view.shown
+        return min(max((tau - c.tau0) / (c.tau_end - c.tau0), 0.0), 1.0) % 1.0
+
+    def clock_progress(self, now: float | None = None) -> float:
+        """Where the browser's player is in the contact at time `now` (monotonic s), in
+        [0, 1)."""
+        progress, started, speed = self.started
+        now = time.monotonic() if now is None else now
+        return (progress + speed * (now - started) / CONTACT_SECONDS) % 1.0
+
+    def clock_tau(self, now: float | None = None) -> float:
+        """The tau of the frame the browser's player shows at time `now` (monotonic s)."""
+        return float(frame_taus(self.view.shown)[frame_index(self.clock_progress(now))])
+
+    def start(self, progress: float) -> None:
+        """(Re)start the browser's player at `progress` with the current contact and speed.
+
+        The frames are Bokeh model changes made from a widget callback, which Panel runs
+        without the document lock: they must go through `hold()` (without it, a change
+        made while a message is being written raises in Bokeh and the player never
+        starts)."""
+        speed = self.view.state.speed
+        self.started = (progress, time.monotonic(), speed)
+        with hold():
+            self.view.player.play(self.view.shown, progress, speed, CONTACT_SECONDS)
+
+    def _on_speed(self, event: param.parameterized.Event) -> None:
+        if self.view.state.playing:  # keep the current frame, change the pace
+            self.start(self.clock_progress())
+
+    def _on_playing(self, event: param.parameterized.Event) -> None:
+        """Start the browser's player at the state's tau; a pause puts the state's tau
+        (which holds the tau the play last started from) on the player's frame."""
+        view, playing = self.view, event.new
+        view.controls.show_playing(playing)
+        if playing:
+            self.start(self.progress_of(view.state.tau))
+            return
+        with hold():  # one message: the player stops and the plots settle on its frame
+            view.player.stop()
+            view.state.tau = self.clock_tau()
+            view.show_state()  # (if the frame is the tau the play started from)

@@ -1,0 +1,117 @@
+"""The contact's controls: widgets made from the state's parameters and bound to them.
+
+Sliders with exact entry for psi, tau0, mu and nu (`ExactSlider`, bound both ways to
+the state), the tau scrubber (it writes the state's tau; while playing, the browser's
+player moves it), Play/Pause, Step, Speed, the log-psi box, the preset menu and its note,
+Reset, the SI inputs (`app.contact.physical_inputs`), the formula card and the CSV
+downloads.  Every value a widget takes from the browser reaches the state through
+`app.kit.widgets.bind`/`follow`, which refuse what the state's domain refuses.
+"""
+
+from __future__ import annotations
+
+import html
+import io
+from collections.abc import Callable
+from functools import partial
+from typing import Protocol
+
+import panel as pn
+
+from app.contact.notes import NOTES
+from app.contact.physical_inputs import PhysicalInputs
+from app.contact.state import PRESETS, ExplorerState, parse_tau, parse_value
+from app.kit.style import FORMULA_CSS, NOTE_STYLE
+from app.kit.widgets import ExactSlider, LabelledCheckbox, LabelledSlider, bind, follow
+from core import Contact
+
+#: The sliders of the contact's four numbers: (name, label, start, end, step); their
+#: boxes take any value of core's domain, the slider widening to show it.
+SLIDERS = (("psi", "ψ = tan θ / tan θ₀", 0.05, 30.0, 0.01),
+           ("tau0", "τ₀ (rad): contact starts", -1.5, 1.5, 0.005),
+           ("mu", "μ friction", 0.01, 1.0, 0.01),
+           ("nu", "ν Poisson ratio", 0.0, 0.49, 0.01))
+
+#: The CSV downloads: key -> what it holds (`ContactView.csv_text`).
+DOWNLOADS = ("curves", "traction", "impulse")
+
+
+class Steps(Protocol):
+    """What the controls act on (`app.contact.view.ContactView`)."""
+
+    shown: Contact
+    animation: object
+
+    def csv_file(self, key: str) -> io.StringIO: ...
+
+
+class Controls:
+    """The contact's widgets, bound to `state`; `view` steps and makes the CSV files."""
+
+    def __init__(self, state: ExplorerState, view: Steps) -> None:
+        for name, label, start, end, step in SLIDERS:
+            widget = ExactSlider(label=label, value=getattr(state, name), start=start,
+                                 end=end, step=step, parse=partial(parse_value, name),
+                                 name=name)
+            bind(widget, state.param[name])
+            setattr(self, f"{name}_slider", widget)
+        c = state.contact()
+        self.tau_slider = ExactSlider(
+            label="τ = ωt (rad): time", value=state.tau, start=c.tau0, end=c.tau_end,
+            step=0.002, parse=lambda text: parse_tau(text, view.shown), name="tau")
+        follow(self.tau_slider, state.param.tau)
+        self.play_button = pn.widgets.Button(label="▶ Play", color="success", width=110)
+        self.play_button.on_click(lambda _: setattr(state, "playing", not state.playing))
+        self.step_button = pn.widgets.Button(label="Step", width=100)
+        self.step_button.on_click(lambda _: view.animation.step())
+        self.speed_slider = LabelledSlider(label="Speed", value=state.speed, start=0.1,
+                                           end=5.0, step=0.1, show_title=True,
+                                           sizing_mode="stretch_width", margin=(5, 10))
+        bind(self.speed_slider, state.param.speed)
+        self.log_box = LabelledCheckbox.from_param(state.param.log_psi,
+                                                   label="log ψ axis (to 10⁶)")
+        options = {"(custom)": "", **{p.label: k for k, p in PRESETS.items()}}
+        self.preset_select = pn.widgets.Select(label="Preset: the paper's figures",
+                                               options=options, value=state.preset)
+        self.preset_select.param.watch(partial(self._on_preset_select, state), "value")
+        self.note = pn.pane.HTML("", sizing_mode="stretch_width", styles=NOTE_STYLE)
+        self.show_preset(state.preset, NOTES.get(state.preset, ""))
+        self.reset_button = pn.widgets.Button(label="Reset", width=100)
+        self.reset_button.on_click(lambda _: state.reset())
+
+        self.physical_inputs = PhysicalInputs(state)  # R in mm, G in GPa, ...
+        self.physical_box = self.physical_inputs.physical_box
+        self.material_select = self.physical_inputs.material_select
+        self.physical_card = self.physical_inputs.card
+        # psi and tau0 follow from SI inputs when they are on (`ContactView.show_state`)
+        self.psi_slider.disabled = self.tau0_slider.disabled = state.physical
+        self.formulas = pn.pane.LaTeX(  # (scaled down to fit a narrow card; else scroll)
+            "", renderer="katex", sizing_mode="stretch_width", styles={"overflow-x": "auto"},
+            stylesheets=[FORMULA_CSS], tags=["formulas"])
+        self.downloads = {key: self._download(key, view.csv_file) for key in DOWNLOADS}
+
+    @staticmethod
+    def _download(key: str, make: Callable[[str], io.StringIO]) -> pn.widgets.FileDownload:
+        return pn.widgets.FileDownload(callback=partial(make, key), filename=f"{key}.csv",
+                                       label=f"CSV: {key}", color="primary", width=150)
+
+    @staticmethod
+    def _on_preset_select(state: ExplorerState, event) -> None:
+        if event.new and event.new != state.preset:
+            state.apply_preset(event.new)
+
+    def show_preset(self, name: str, note: str) -> None:
+        """The menu on preset `name` ('' once left) and its note (hidden when empty)."""
+        self.preset_select.value = name
+        self.note.param.update(object=html.escape(note), visible=bool(note))
+
+    def show_playing(self, playing: bool) -> None:
+        """Play/Pause's label and colour."""
+        self.play_button.param.update(label="‖ Pause" if playing else "▶ Play",
+                                      color="warning" if playing else "success")
+
+    def sliders(self) -> list[ExactSlider]:
+        """The sliders whose browser moves are taken as they arrive
+        (`ExactSlider.follow_browser`)."""
+        return [self.psi_slider, self.tau0_slider, self.mu_slider, self.nu_slider,
+                self.tau_slider]

@@ -1,0 +1,364 @@
+"""The curves over one contact: T(tau) (Fig. 7, `ForceScene`), the approach and the
+radii (Fig. 4, `RadiiScene`), the motion of the contact centre (Fig. 9, `MotionScene`),
+each with a marker at the current tau (source `<name>_marker`)."""
+
+from __future__ import annotations
+
+import math
+from functools import cached_property
+
+import numpy as np
+from bokeh.layouts import column
+from bokeh.models import (
+    CDSView,
+    ColumnDataSource,
+    GlyphRenderer,
+    IndexFilter,
+    Line,
+    Range1d,
+    Scatter,
+    Segment,
+    Text,
+)
+
+from app.kit.figures import (
+    CURVE_POINTS,
+    FRAME_LEVEL,
+    LINE_COLORS,
+    Scene,
+    add_legend,
+    draw,
+    fit_range,
+    lean,
+    new_figure,
+    style_figure,
+)
+from app.kit.wire import inline
+from core import Contact
+
+#: The landmark labels' offset below the frame's top (px), and tau1's, a line lower: it
+#: comes close to pi - tau0 for psi near 1 and to pi/2 for large psi.
+LANDMARK_DY, TAU1_DY = 2, 18
+
+
+class CurveScene(Scene):
+    """A scene of curves over tau with markers (and a vertical line) at the current tau.
+
+    Subclasses list their curves as (column, legend, colour, dash) in `curves` and
+    implement `columns(c, tau)` returning each column's values.
+    """
+
+    curves: tuple[tuple[str, str, str, str], ...] = ()
+    title = ""
+    y_label = ""
+    #: the plot's panels, one above the other on a shared time axis: (title, y label,
+    #: the columns drawn); empty: one panel of every curve
+    panels: tuple[tuple[str, str, tuple[str, ...]], ...] = ()
+
+    def __init__(self) -> None:
+        super().__init__({"tau": [], **{col: [] for col, *_ in self.curves}})
+        self.marker = ColumnDataSource({"x": [], "y": [], "color": [], "lo": [], "hi": []},
+                                       name=f"{self.name}_marker")
+        #: the paper's landmarks on the time axis: tau0, pi/2, tau1 (psi > 1), pi - tau0
+        #: (one source per panel)
+        empty = {"x": [], "label": [], "align": [], "dy": [], "lo": [], "hi": []}
+        self._landmarks = [
+            ColumnDataSource(empty, name=f"{self.name}_landmarks" + (f"_{i}" if i else ""))
+            for i in range(len(self._panels()))]
+        self.landmarks = self._landmarks[0]
+
+    def _panels(self) -> tuple[tuple[str, str, tuple[str, ...]], ...]:
+        return self.panels or ((self.title, self.y_label,
+                                tuple(col for col, *_ in self.curves)),)
+
+    @cached_property
+    def figures(self) -> list:
+        """The panels' plots, built on first use (a scene in a closed tab may never need
+        them)."""
+        return self._make_figures()
+
+    @property
+    def figure(self):
+        """What the page shows: the plot, or its panels in a column."""
+        figs = self.figures
+        return figs[0] if len(figs) == 1 else self._column
+
+    @cached_property
+    def _column(self):
+        return column(*self.figures, sizing_mode="stretch_width")
+
+    def _make_figures(self) -> list:
+        figs = []
+        rows = {col: i for i, (col, *_) in enumerate(self.curves)}
+        for k, ((title, y_label, cols), landmarks) in enumerate(
+                zip(self._panels(), self._landmarks, strict=True)):
+            extra = {"x_range": figs[0].x_range} if figs else {}
+            fig = new_figure(title, "τ = ωt (rad)", y_label, **extra)
+            draw(fig, Segment, landmarks, x0="x", y0="lo", x1="x", y1="hi",
+                 line_color="#bbbbbb", line_width=1, line_dash="dashed")
+            draw(fig, Text, landmarks, x="x", y="hi", text="label", text_align="align",
+                 text_baseline="top", text_font_size="12pt", text_color="#555555",
+                 y_offset="dy")
+            drawn = [(c, lb, color, dash) for c, lb, color, dash in self.curves if c in cols]
+            lines = [draw(fig, Line, self.source, x="tau", y=col, color=color, line_width=3,
+                          line_dash=dash, level=FRAME_LEVEL, name=f"{self.name}_{col}")
+                     for col, _, color, dash in drawn]
+            # the curves are drawn above the legend's level, so the legend goes outside
+            # the frame: in one row above it (beside it, it left a phone a narrow frame)
+            # (curves of one label share an entry: +-mu P)
+            entries: dict[str, list[GlyphRenderer]] = {}
+            for (_, label, *_), line in zip(drawn, lines, strict=True):
+                entries.setdefault(label, []).append(line)
+            add_legend(fig, list(entries.items()), place="above")
+            view = {} if len(self._panels()) == 1 else {"view": CDSView(
+                filter=IndexFilter([rows[col] for col in cols]))}
+            draw(fig, Scatter, self.marker, x="x", y="y", size=13, color="color",
+                 line_color="black", level=FRAME_LEVEL, **view)
+            # the cursor at the current tau is drawn from the marker's own source, so that
+            # a frame changes one data source per plot (moving a Span model costs the
+            # browser a full repaint of the plot)
+            draw(fig, Segment, self.marker, x0="x", y0="lo", x1="x", y1="hi",
+                 line_color="#666666", line_width=2, line_dash="dotted", level=FRAME_LEVEL,
+                 **view)
+            style_figure(fig)
+            if k:
+                fig.title.text_font_size = "13pt"
+            figs.append(fig)
+        return figs
+
+    def _y_range(self, col: str) -> Range1d:
+        """The y range of the panel drawing column `col`."""
+        for (_, _, cols), fig in zip(self._panels(), self.figures, strict=True):
+            if col in cols:
+                return fig.y_range
+        raise KeyError(col)
+
+    def grid(self, c: Contact) -> np.ndarray:
+        """The times the curves are drawn at (rad)."""
+        return c.tau_grid(CURVE_POINTS)
+
+    def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
+        """Values of every curve at the times tau (an array)."""
+        raise NotImplementedError
+
+    def update_contact(self, c: Contact) -> None:
+        tau = self.grid(c)
+        columns = self.columns(c, tau)
+        self.source.data = inline({"tau": tau, **columns})
+        fit_range(self.figures[0].x_range, tau, pad=0.02)
+        marks = [(c.tau0, "τ₀"), (math.pi / 2, "π/2"), (c.tau1, "τ₁"), (c.tau_end, "π−τ₀")]
+        marks = [(x, label) for x, label in marks if not math.isnan(x)]
+        for (_, _, cols), fig, landmarks in zip(self._panels(), self.figures,
+                                                self._landmarks, strict=True):
+            y = fig.y_range
+            fit_range(y, *(columns[col] for col in cols), pad=0.03, snap=True)
+            # the first and last labels inside the frame (at its edges, centred, they
+            # would be cut)
+            align = ["left", *["center"] * (len(marks) - 2), "right"]
+            landmarks.data = {"x": [x for x, _ in marks], "label": [lb for _, lb in marks],
+                              "align": align,
+                              "dy": [TAU1_DY if lb == "τ₁" else LANDMARK_DY for _, lb in marks],
+                              "lo": [y.start] * len(marks), "hi": [y.end] * len(marks)}
+
+    def update_tau(self, c: Contact, tau: float) -> None:
+        values = self.columns(c, np.array([tau]))
+        ranges = [self._y_range(col) for col, *_ in self.curves]
+        self.marker.data = {
+            "x": [tau] * len(self.curves),
+            "y": [float(values[col][0]) for col, *_ in self.curves],
+            "color": [color for _, _, color, _ in self.curves],
+            "lo": [y.start for y in ranges],
+            "hi": [y.end for y in ranges],
+        }
+
+
+class ForceScene(CurveScene):
+    """Fig. 7: T / T0 over the contact with the Coulomb bounds +-mu P / T0."""
+
+    name = "force"
+    title = "Tangential force T / T₀"
+    y_label = "T / T₀"
+    curves = (
+        ("T", "T / T₀", "#000000", "solid"),
+        ("muP", "±μP / T₀", "#999999", "dashed"),
+        ("neg_muP", "±μP / T₀", "#999999", "dashed"),
+    )
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.family = ColumnDataSource({"xs": [], "ys": [], "label": [], "color": []},
+                                       name="force_family")
+        self._family: list[tuple] = []
+
+    def _make_figures(self) -> list:
+        figs = super()._make_figures()
+        figs[0].multi_line("xs", "ys", source=self.family, color="color", line_width=2,
+                           line_alpha=0.7, legend_field="label")
+        lean(figs[0])
+        return figs
+
+    def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
+        line = c.at(tau)
+        n = line.normal_force  # P / P0 = mu P / T0
+        return {"T": line.tangential_force, "muP": n, "neg_muP": -n}
+
+    def table(self) -> dict[str, np.ndarray]:
+        """The plotted curves for the CSV download: tau (rad), T/T0 (eqs 38, 39) and the
+        Coulomb bounds +-mu P/T0 = +-P/P0 (eq 9)."""
+        d = {k: np.asarray(v) for k, v in self.source.data.items()}
+        return {"tau (rad)": d["tau"], "T/T0": d["T"], "mu P/T0": d["muP"],
+                "-mu P/T0": d["neg_muP"]}
+
+    def set_family(self, contacts: list[Contact]) -> None:
+        """Overlay T / T0 of further contacts (the paper's Fig. 7 families).
+
+        An unchanged family is not sent again."""
+        key = [(c.psi, c.tau0, c.mu, c.nu) for c in contacts]
+        if key == self._family:
+            return
+        self._family = key
+        grids = [c.tau_grid(CURVE_POINTS) for c in contacts]
+        self.family.data = {
+            "xs": grids,
+            "ys": [c.tangential_force(t) for c, t in zip(contacts, grids, strict=True)],
+            "label": [f"ψ = {c.psi:g}" for c in contacts],
+            "color": [LINE_COLORS[1 + i % 4] for i in range(len(contacts))],
+        }
+
+
+class RadiiScene(CurveScene):
+    """Fig. 4b: approach, contact radius a and stick radius b against tau."""
+
+    name = "radii"
+    title = "Approach α/(H−h), contact radius a/a*, stick radius b/a*"
+    y_label = "dimensionless"
+    curves = (
+        ("approach", "α / (H−h)", "#000000", "dashed"),
+        ("a", "a / a*", "#D55E00", "solid"),
+        ("b", "b / a*", "#009E73", "solid"),
+    )
+
+    #: the times of the Fig. 6 profiles, marked a to f on the a(tau) curve (Fig. 4b)
+    FIG6_TAUS = (("a", math.pi / 4), ("b", math.pi / 3), ("c", math.pi / 2),
+                 ("d", 7 * math.pi / 12), ("e", 17 * math.pi / 24), ("f", 3 * math.pi / 4))
+
+    def __init__(self) -> None:
+        super().__init__()
+        #: Fig. 4a: the lower sphere's height u_z0 / H = sin tau over half a period
+        self.drive = ColumnDataSource({"tau": [], "uz": [], "touch": []}, name="radii_drive")
+        self.levels = ColumnDataSource({"y": [], "label": []}, name="radii_levels")
+        self.bracket = ColumnDataSource({"x": [], "lo": [], "hi": [], "mid": [], "label": []},
+                                        name="radii_bracket")
+        #: Fig. 4b's disks: the Fig. 6 times that lie in the contact
+        self.disks = ColumnDataSource({"tau": [], "a": [], "label": []}, name="radii_disks")
+
+    @cached_property
+    def drive_figure(self):
+        """Fig. 4a, built on first use: u_z0 / H against tau, the level h / H above which
+        the spheres touch, and the approach scale H - h."""
+        fig = new_figure("Height of the lower sphere u_z0 / H (Fig. 4a)", "τ = ωt (rad)",
+                         "u_z0 / H", height=220, x_range=Range1d(0.0, math.pi))
+        fig.line("tau", "uz", source=self.drive, color="black", line_width=2)
+        fig.line("tau", "touch", source=self.drive, color="#D55E00", line_width=4,
+                 legend_label="in contact")
+        fig.hspan(y="y", source=self.levels, line_color="#888888", line_dash="dashed")
+        fig.text(0.05, "y", text="label", source=self.levels, text_baseline="bottom",
+                 text_font_size="12pt")
+        # the approach's amplitude H - h: from the level h up to H (eq 8)
+        fig.segment(x0="x", y0="lo", x1="x", y1="hi", source=self.bracket, color="#0072B2",
+                    line_width=2)
+        fig.scatter("x", "lo", source=self.bracket, marker="dash", angle=math.pi / 2,
+                    size=10, color="#0072B2")
+        fig.text("x", "mid", text="label", source=self.bracket, x_offset=6,
+                 text_baseline="middle", text_font_size="12pt", text_color="#0072B2")
+        style_figure(fig)
+        fig.legend.location = "bottom_center"
+        return fig
+
+    @property
+    def figure(self):
+        """Fig. 4a above Fig. 4b."""
+        return self._with_drive
+
+    @cached_property
+    def _with_drive(self):
+        main = self.figures[0]
+        main.scatter("tau", "a", source=self.disks, size=12, color="#D55E00",
+                     line_color="black")
+        main.text("tau", "a", text="label", source=self.disks, text_font_size="13pt",
+                  x_offset=6, y_offset=-4, text_font_style="bold")
+        lean(main)
+        return column(self.drive_figure, main, sizing_mode="stretch_width")
+
+    def update_contact(self, c: Contact) -> None:
+        super().update_contact(c)
+        tau = np.unique(np.concatenate([np.linspace(0.0, math.pi, 241), [c.tau0, c.tau_end]]))
+        uz = c.drive_displacement(tau)  # u_z0 / H = u_x0 / u0 = sin tau (eq 3)
+        s0 = math.sin(c.tau0)
+        self.drive.data = {"tau": tau, "uz": uz, "touch": np.where(
+            (tau >= c.tau0) & (tau <= c.tau_end), uz, np.nan)}
+        self.levels.data = {"y": [s0, 1.0], "label": [f"h / H = sin τ₀ = {s0:.3g}", ""]}
+        x = math.pi / 2 + 0.35
+        self.bracket.data = {"x": [x], "lo": [s0], "hi": [1.0], "mid": [(1.0 + s0) / 2],
+                             "label": ["(H − h) / H: the largest approach"]}
+        marks = [(label, t) for label, t in self.FIG6_TAUS if c.tau0 <= t <= c.tau_end]
+        taus = np.array([t for _, t in marks])
+        self.disks.data = {"tau": taus, "a": c.contact_radius(taus) if marks else taus,
+                           "label": [label for label, _ in marks]}
+
+    def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
+        line = c.at(tau)
+        return {"approach": line.approach, "a": line.contact_radius, "b": line.stick_radius}
+
+    def table(self) -> dict[str, np.ndarray]:
+        """The plotted curves for the CSV download: tau (rad), the approach alpha/(H-h)
+        (eq 8), the contact radius a/a* (eqs 7, 8) and the stick radius b/a* (eq 30)."""
+        d = {k: np.asarray(v) for k, v in self.source.data.items()}
+        return {"tau (rad)": d["tau"], "alpha/(H-h)": d["approach"], "a/a*": d["a"],
+                "b/a*": d["b"]}
+
+
+class MotionScene(CurveScene):
+    """Fig. 9: velocity v2 and displacement u2 of the contact centre, with the drive, in
+    two panels; drawn a little before and after the contact, so that the jumps of v2 at
+    tau0, tau1 and pi - tau0 show as (nearly) vertical steps."""
+
+    name = "motion"
+    title = "Contact-centre motion (Fig. 9)"
+    y_label = "v/(ωu₀),  u/u₀"
+    curves = (
+        ("v2", "v₂ / (ω u₀)", "#D55E00", "solid"),
+        ("u2", "u₂ / u₀", "#0072B2", "solid"),
+        ("drive_v", "du₀ₓ/dt / (ω u₀)", "#D55E00", "dotted"),
+        ("drive_u", "u₀ₓ / u₀", "#0072B2", "dotted"),
+    )
+    panels = (
+        ("Contact-centre velocity (Fig. 9a)", "v / (ω u₀)", ("v2", "drive_v")),
+        ("Contact-centre displacement (Fig. 9b)", "u / u₀", ("u2", "drive_u")),
+    )
+    MARGIN = 0.1  # drawn before and after the contact, as a fraction of its duration
+    STEP = 1e-6  # a jump is drawn over this fraction of the contact's duration
+
+    def grid(self, c: Contact) -> np.ndarray:
+        """The contact's grid, a margin outside it (no contact) and, at tau0, tau1 and
+        pi - tau0, a time just on the other side of each jump (rad)."""
+        span = c.tau_end - c.tau0
+        margin, step = self.MARGIN * span, self.STEP * span
+        inside = super().grid(c)
+        before = np.linspace(c.tau0 - margin, c.tau0 - step, 12)
+        after = np.linspace(c.tau_end + step, c.tau_end + margin, 12)
+        jumps = [] if math.isnan(c.tau1) else [c.tau1 - step]
+        return np.unique(np.concatenate([before, inside, jumps, after]))
+
+    def columns(self, c: Contact, tau: np.ndarray) -> dict[str, np.ndarray]:
+        line = c.at(tau)
+        return {"v2": line.centre_velocity, "u2": line.centre_displacement,
+                "drive_v": c.drive_velocity(tau), "drive_u": c.drive_displacement(tau)}
+
+    def table(self) -> dict[str, np.ndarray]:
+        """The plotted curves for the CSV download: tau (rad), the contact centre's
+        velocity v2/(omega u0) (eq 42) and displacement u2/u0 (eq 43), and the drive's,
+        (du_x0/dt)/(omega u0) = cos tau and u_x0/u0 = sin tau (eq 3)."""
+        d = {k: np.asarray(v) for k, v in self.source.data.items()}
+        return {"tau (rad)": d["tau"], "v2/(omega u0)": d["v2"], "u2/u0": d["u2"],
+                "(du_x0/dt)/(omega u0)": d["drive_v"], "u_x0/u0": d["drive_u"]}

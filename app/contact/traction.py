@@ -1,0 +1,151 @@
+"""Fig. 6 and the contact disc: the traction profile across the contact at the current
+tau (`TractionScene`, source `traction`) and the disc seen from above, stick disc and
+slip annulus coloured by phase (`DiscScene`, source `disc`)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from bokeh.models import (
+    Annulus,
+    Circle,
+    Label,
+    Line,
+    VArea,
+)
+
+from app.contact.phases import STICK_COLOR, style
+from app.kit.figures import (
+    FRAME_LEVEL,
+    PROFILE_POINTS,
+    Scene,
+    add_legend,
+    draw,
+    new_figure,
+    style_figure,
+)
+from app.kit.wire import inline
+from core import Contact
+
+
+class TractionScene(Scene):
+    """Fig. 6: tau_u(r) / (mu p*) across the diameter at the current tau."""
+
+    name = "traction"
+
+    def __init__(self) -> None:
+        super().__init__({k: [] for k in ("r", "traction", "upper", "lower", "stick_lo",
+                                          "stick_hi")})
+        fig = new_figure("Traction profile", "r / a*", "traction  τᵤ / (μ p*)", height=390)
+        stick = draw(fig, VArea, self.source, x="r", y1="stick_lo", y2="stick_hi",
+                     fill_color=STICK_COLOR, fill_alpha=0.25, level=FRAME_LEVEL)
+        envelope = [draw(fig, Line, self.source, x="r", y=col, line_dash="dashed",
+                         color="grey", line_width=2, level=FRAME_LEVEL)
+                    for col in ("upper", "lower")]
+        self.line = draw(fig, Line, self.source, x="r", y="traction", color="black",
+                         line_width=3, level=FRAME_LEVEL)
+        # in one row above the frame (inside it, it covered the stick zone and the rim;
+        # beside it, it left a phone too narrow a frame)
+        add_legend(fig, [("stick zone", [stick]), ("±μ p", envelope), ("τᵤ", [self.line])],
+                   place="above")
+        # values at the current tau, drawn on the canvas: a text pane beside the plot
+        # would make the browser lay out the whole page again on every frame
+        self.caption = Label(x=0, y=0, text="", text_align="right", text_baseline="top",
+                             text_font_size="13pt", background_fill_color="white",
+                             background_fill_alpha=0.8, name="traction_caption",
+                             level=FRAME_LEVEL)
+        fig.add_layout(self.caption)
+        # the phase, in its colour, drawn with the data: BokehJS does not always repaint a
+        # changed Title (its new text showed only after a resize), a Label on the overlay
+        # level is painted with every frame
+        self.phase_label = Label(x=0, y=0, text="", text_baseline="bottom",
+                                 text_align="center", text_font_size="17pt",
+                                 text_font_style="bold",
+                                 background_fill_color="white", background_fill_alpha=0.8,
+                                 name="traction_phase", level=FRAME_LEVEL)
+        fig.add_layout(self.phase_label)
+        style_figure(fig)
+        self.figure = fig
+
+    def update_contact(self, c: Contact) -> None:
+        a_max = float(c.contact_radius(math.pi / 2))
+        p_max = float(c.pressure(0.0, math.pi / 2))
+        self.r_grid = np.linspace(-1.05 * a_max, 1.05 * a_max, PROFILE_POINTS)
+        self.figure.x_range.start, self.figure.x_range.end = -1.1 * a_max, 1.1 * a_max
+        # room above the largest pressure for the caption's two lines, below it for the phase
+        self.figure.y_range.start, self.figure.y_range.end = -1.6 * p_max, 2.4 * p_max
+        self.caption.x, self.caption.y = 1.08 * a_max, 2.35 * p_max
+        self.phase_label.x, self.phase_label.y = 0.0, -1.55 * p_max  # bottom centre
+
+    def profiles(self, c: Contact, taus: np.ndarray) -> dict[str, np.ndarray]:
+        """The profile at each of the K times `taus`: columns of shape (K, L).
+
+        Each row is the r grid with -a, a, -b, b inserted (sharp corners at the contact
+        and stick edges), so every frame has the same length L and the browser's player
+        can copy frames into the plotted arrays in place.
+        """
+        taus = np.atleast_1d(np.asarray(taus, float))
+        line = c.at(taus)
+        a, b = line.contact_radius, line.stick_radius
+        grid = np.broadcast_to(self.r_grid, (taus.size, self.r_grid.size))
+        r = np.sort(np.concatenate([grid, np.stack([-a, a, -b, b], axis=1)], axis=1), axis=1)
+        t = taus[:, None]
+        p = c.pressure(r, t)
+        stick = (np.abs(r) <= b[:, None]) & (b[:, None] > 0)
+        return {"r": r, "traction": c.traction(r, t), "upper": p, "lower": -p,
+                "stick_lo": np.where(stick, -p, 0.0), "stick_hi": np.where(stick, p, 0.0)}
+
+    def table(self, c: Contact, tau: float) -> dict[str, np.ndarray]:
+        """The profile of contact `c` at time tau (rad), on the points `update_tau` plots,
+        for the CSV download: r/a* (signed position along x through the centre), the
+        traction tau_u/(mu p*) (eqs 18, 24, 33, 36), the pressure p/p* (eq 6; also the
+        Coulomb bound mu p in units of mu p*) and stick (1 in the stick disc |r| <= b,
+        0 in slip and outside contact)."""
+        profile = {k: v[0] for k, v in self.profiles(c, np.array([tau])).items()}
+        r, b = profile["r"], float(c.stick_radius(tau))
+        return {"r/a*": r, "tau_u/(mu p*)": profile["traction"], "p/p*": profile["upper"],
+                "stick": ((np.abs(r) <= b) & (b > 0)).astype(float)}
+
+    def update_tau(self, c: Contact, tau: float) -> None:
+        self.source.data = inline({k: v[0] for k, v in self.profiles(c, np.array([tau])).items()})
+        look = style(c.phase(tau))
+        self.phase_label.text_color = look.color
+        self.phase_label.text = look.name
+
+
+class DiscScene(Scene):
+    """Top view of the contact disc: stick disc and slip annulus coloured by phase."""
+
+    name = "disc"
+
+    def __init__(self) -> None:
+        super().__init__({"x": [0.0, 0.0], "y": [0.0, 0.0], "inner": [0.0, 0.0],
+                          "outer": [0.0, 0.0], "color": [STICK_COLOR, STICK_COLOR],
+                          "label": ["stick", "slip"]})
+        # no legend: a legend built from the data would repaint the whole plot per frame
+        fig = new_figure("Contact disc (top view)", "x / a*", "y / a*", match_aspect=True,
+                         sizing_mode="fixed", width=350, height=350)
+        self.envelope = draw(fig, Circle, x=0, y=0, radius=1.0, fill_alpha=0,
+                             line_dash="dotted", line_color="grey", line_width=2)
+        draw(fig, Annulus, self.source, x="x", y="y", inner_radius="inner",
+             outer_radius="outer", fill_color="color", line_color="black", line_width=1,
+             level=FRAME_LEVEL)
+        fig.x_range.start, fig.x_range.end = -1.15, 1.15
+        fig.y_range.start, fig.y_range.end = -1.15, 1.15
+        style_figure(fig)
+        self.figure = fig
+
+    def update_contact(self, c: Contact) -> None:
+        a_max = float(c.contact_radius(math.pi / 2))
+        self.envelope.glyph.radius = a_max
+        self.figure.x_range.start, self.figure.x_range.end = -1.15 * a_max, 1.15 * a_max
+        self.figure.y_range.start, self.figure.y_range.end = -1.15 * a_max, 1.15 * a_max
+
+    def update_tau(self, c: Contact, tau: float) -> None:
+        line = c.at(tau)
+        a, b, look = float(line.contact_radius), float(line.stick_radius), style(line.phase)
+        self.source.data = {
+            "x": [0.0, 0.0], "y": [0.0, 0.0], "inner": [0.0, b], "outer": [b, a],
+            "color": [STICK_COLOR, look.ring_color], "label": ["stick", look.ring],
+        }

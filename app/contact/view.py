@@ -1,0 +1,267 @@
+"""The contact feature: the state of one contact shown in every scene, and its controls.
+
+`ContactView` shows an `ExplorerState` (what the user set) in the scenes (what is shown).
+The path from a slider to a plot is short (docs/app.md, "How data flows"):
+
+    ExactSlider.value  --bind-->  ExplorerState.psi  --param.depends-->  show_state
+      -> ContactView.refresh -> TractionScene.update_tau -> source.data (core's numbers)
+
+`show_state` depends on every input of the contact and on tau: it rebuilds the
+`core.Contact` and refreshes every scene when the contact differs from the one shown,
+refreshes only what depends on tau when only tau differs, and does nothing when both are
+shown; a state it must correct first (psi and tau0 derived from SI inputs, tau clamped
+into the contact) it corrects, and the change that makes shows it.  All changes of one
+step reach the browser as one message (`panel.io.hold`).  The curve scenes share one
+card of tabs: only the open tab is computed, the others catch up when opened.
+
+The animation is played by the browser (`app.contact.animation`); the page around this
+view (URL, cards of other features, messages) is `app.page.explorer`'s.
+"""
+
+from __future__ import annotations
+
+import io
+
+import panel as pn
+import param
+from panel.io import hold
+
+from app.contact import export
+from app.contact.animation import Animation
+from app.contact.controls import Controls
+from app.contact.curves import ForceScene, MotionScene, RadiiScene
+from app.contact.data import caption, captions, readout_rows
+from app.contact.formulas import formulas
+from app.contact.impulse import ImpulseScene
+from app.contact.multiples import SmallMultiples
+from app.contact.notes import NOTES
+from app.contact.player import Player
+from app.contact.readout import Readout
+from app.contact.spheres import SpheresScene
+from app.contact.state import PRESETS, SI_KEYS, ExplorerState
+from app.contact.traction import DiscScene, TractionScene
+from app.kit.figures import Scene
+from app.kit.style import TAB_ROW_CSS
+from core import Contact
+
+#: The state's parameters that define the contact (`ExplorerState.contact`).
+CONTACT_INPUTS = ("psi", "tau0", "mu", "nu", "physical", *SI_KEYS)
+
+#: The curve tabs' titles, in the order of `ContactView.tabbed`.
+TAB_TITLES = ("T(τ) (Fig. 7)", "Impulse (Fig. 8)", "Radii (Fig. 4b)", "Centre motion (Fig. 9)")
+
+
+class ContactView(param.Parameterized):
+    """One session's contact: its state, scenes, controls and animation."""
+
+    state = param.ClassSelector(class_=ExplorerState, constant=True,
+                                doc="what the user set; every scene shows it")
+    shown = param.ClassSelector(class_=Contact, doc="the core.Contact on screen")
+
+    def __init__(self, state: ExplorerState | None = None) -> None:
+        state = state or ExplorerState()
+        super().__init__(state=state, shown=state.contact())
+        #: the time the scenes on the server show (the player's frames aside)
+        self._shown_tau = state.tau
+        self._shown_phase = -1
+        self.traction, self.disc = TractionScene(), DiscScene()
+        self.force, self.impulse = ForceScene(), ImpulseScene()
+        self.radii, self.motion = RadiiScene(), MotionScene()
+        self.spheres = SpheresScene()
+        self.scenes: list[Scene] = [self.spheres, self.traction, self.disc, self.force,
+                                    self.impulse, self.radii, self.motion]
+        self.readout = Readout()
+        self.controls = Controls(state, self)
+        self.player = Player(self.traction, self.disc, [self.force, self.radii, self.motion],
+                             self.traction.caption, self.traction.phase_label,
+                             self.traction.figure, captions,
+                             lambda taus: [self.controls.tau_slider.text(t) for t in taus],
+                             sprites=[self.spheres])
+        self.animation = Animation(self)
+        self.impulse.set_log(state.log_psi)
+        #: the curve scenes share one card, one tab each; a scene's figure is built when
+        #: its tab is first opened
+        self.tabbed: list[Scene] = [self.force, self.impulse, self.radii, self.motion]
+        self.panes = [pn.pane.Bokeh(sizing_mode="stretch_width") for _ in self.tabbed]
+        self.tabs = pn.Tabs(*zip(TAB_TITLES, self.panes, strict=True), dynamic=True,
+                            sizing_mode="stretch_width", stylesheets=[TAB_ROW_CSS])
+        self._stale: set[Scene] = set()
+        self._show_figure(0)
+        self.tabs.param.watch(self._on_tab, ["active"])
+        self.fig6_card = pn.Card(title="Fig. 6 in full: the six traction profiles "
+                                 "(ψ = 2.414, τ₀ = π/6)", collapsed=True,
+                                 sizing_mode="stretch_width", margin=6)
+        self.fig6_card.param.watch(self._on_fig6_card, "collapsed")
+        self.refresh()
+
+    # ------------------------------------------------------------------ state
+
+    @param.depends(*(f"state.{k}" for k in (*CONTACT_INPUTS, "tau")), watch=True)
+    def show_state(self) -> None:
+        """Show the state: refresh every scene if its contact is not the one shown, else
+        what depends on tau if its tau is not the one shown, else nothing.
+
+        A state that needs correcting first (with SI inputs psi and tau0 follow from
+        them; tau is kept inside the contact) is corrected, and the change that makes
+        calls this again to show it.  SI inputs that core refuses together are not
+        applied (the physical inputs' card says why, under its boxes)."""
+        s = self.state
+        self.controls.psi_slider.disabled = self.controls.tau0_slider.disabled = s.physical
+        try:
+            c = s.contact()
+        except ValueError:
+            if s.physical:
+                return
+            raise
+        fixes = {"psi": c.psi, "tau0": c.tau0} if s.physical else {}
+        fixes["tau"] = min(max(s.tau, c.tau0), c.tau_end)
+        fixes = {k: v for k, v in fixes.items() if getattr(s, k) != v}
+        if fixes:
+            s.param.update(**fixes)  # (which calls this again)
+            return
+        if (c, c.scales) != (self.shown, self.shown.scales):
+            self.shown = c
+            self.refresh()
+        elif s.tau != self._shown_tau:
+            if s.playing:  # the scrubber moved while playing: play on from there
+                self.animation.start(self.animation.progress_of(s.tau))
+            else:
+                self.update_tau()
+
+    def is_shown(self, scene: Scene) -> bool:
+        """Whether `scene` is on the page now (the curve scenes: their tab is open)."""
+        return scene not in self.tabbed or self.tabbed[self.tabs.active] is scene
+
+    def _on_tab(self, event) -> None:
+        if event.new not in range(len(self.tabbed)):  # (from a script: no such tab)
+            return
+        with hold():
+            self.catch_up([self.tabbed[event.new]])
+            self._show_figure(event.new)
+
+    def _show_figure(self, tab: int) -> None:
+        """Put tab `tab`'s figure in its pane (built on first use)."""
+        figure = self.tabbed[tab].figure
+        if self.panes[tab].object is not figure:
+            self.panes[tab].object = figure
+
+    def catch_up(self, scenes: list[Scene]) -> None:
+        """Bring those of `scenes` that missed changes while hidden up to date."""
+        c, tau = self.shown, self.state.tau
+        with hold():
+            for scene in scenes:
+                if scene in self._stale:
+                    self._stale.discard(scene)
+                    scene.update_contact(c)
+                    scene.update_tau(c, tau)
+
+    def refresh(self) -> None:
+        """Recompute every scene shown for the current state (after a parameter change);
+        the others are marked to catch up when shown."""
+        c = self.shown
+        tau = self._shown_tau = self.state.tau
+        with hold():
+            for scene in self.scenes:
+                if self.is_shown(scene):
+                    scene.update_contact(c)
+                    scene.update_tau(c, tau)
+                else:
+                    self._stale.add(scene)
+            self._show_family()
+            self.controls.tau_slider.param.update(start=c.tau0, end=c.tau_end, value=tau)
+            self.readout.show(readout_rows(c))
+            self._show_formulas(c, tau)
+            self.traction.caption.text = caption(c, tau)
+            if self.state.playing:  # the player goes on, at its place in the contact
+                self.animation.start(self.animation.clock_progress())
+
+    def update_tau(self) -> None:
+        """Refresh what depends on tau only (a scrub, a step, the frame a pause lands on)."""
+        c = self.shown
+        tau = self._shown_tau = self.state.tau
+        with hold():
+            for scene in self.scenes:
+                if scene in self._stale:
+                    continue  # caught up in full when shown
+                if self.is_shown(scene):
+                    scene.update_tau(c, tau)
+                else:
+                    self._stale.add(scene)
+            self._show_formulas(c, tau)
+            self.traction.caption.text = caption(c, tau)
+            self.controls.tau_slider.value = tau  # (its watcher finds the state's tau)
+
+    def _show_formulas(self, c: Contact, tau: float) -> None:
+        phase = int(c.phase(tau))  # a 0-d array for one tau
+        if phase != self._shown_phase:
+            self._shown_phase = phase
+            self.controls.formulas.object = formulas(phase)
+
+    # ---------------------------------------------------------------- presets
+
+    @param.depends("state.preset", watch=True)
+    def _on_preset(self) -> None:
+        """The selector, its note and the T(tau) family follow the state's preset ('' once
+        left)."""
+        self.controls.show_preset(self.state.preset, NOTES.get(self.state.preset, ""))
+        with hold():
+            self._show_family()
+
+    def _show_family(self) -> None:
+        """Overlay the T(tau) curves of the preset's psi family (Fig. 7), or none."""
+        c = self.shown
+        preset = PRESETS.get(self.state.preset)
+        family = preset.family if preset else ()
+        self.force.set_family([Contact(p, c.tau0, mu=c.mu, nu=c.nu) for p in family])
+
+    @param.depends("state.log_psi", watch=True)
+    def _on_log(self) -> None:
+        self.impulse.set_log(self.state.log_psi)
+        self._stale.add(self.impulse)
+        if self.is_shown(self.impulse):
+            with hold():
+                self.catch_up([self.impulse])
+                self._show_figure(self.tabbed.index(self.impulse))
+
+    def _on_fig6_card(self, event) -> None:
+        """Build the six Fig. 6 plots when their card is first opened."""
+        if not event.new and not self.fig6_card.objects:
+            self.fig6_card.objects = [pn.pane.Bokeh(SmallMultiples().figure,
+                                                    sizing_mode="stretch_width")]
+
+    # ---------------------------------------------------------------- outputs
+
+    def csv_text(self, key: str, tau: float | None = None) -> str:
+        """CSV of the data shown (`app.contact.export`): 'curves' (T, radii, motion on the
+        tau grid), 'traction' (the profile at time tau, rad: by default the state's) or
+        'impulse' (the impulse curve), after comment lines naming the parameters."""
+        self.catch_up(self.tabbed)  # a hidden tab's data too, as it is now
+        c = self.shown
+        tau = self.state.tau if tau is None else tau
+        if key == "curves":
+            table = export.curves_table(self.force, self.radii, self.motion, c)
+        elif key == "traction":
+            table = export.traction_table(self.traction, c, tau)
+        elif key == "impulse":
+            table = self.impulse.table()
+        else:
+            raise KeyError(key)
+        return export.csv_text(table, export.header(key, c, tau if key == "traction" else None))
+
+    def csv_filename(self, key: str, tau: float | None = None) -> str:
+        """The CSV file's name, after the parameters it holds and, for 'traction', the
+        time tau (rad; by default the state's)."""
+        tau = self.state.tau if tau is None else tau
+        return export.file_name(key, self.shown, tau if key == "traction" else None)
+
+    def csv_file(self, key: str) -> io.StringIO:
+        """The CSV as a file object, for `pn.widgets.FileDownload` (called on a click).
+
+        A traction profile is taken at the tau shown: while playing, the browser's frame
+        (`Animation.clock_tau`), named in the file and its name alike.  The download is
+        named here, when it is made, not on every parameter change: renaming the
+        buttons' files would re-render them in the browser per slider move.
+        """
+        tau = self.animation.clock_tau() if self.state.playing else self.state.tau
+        self.controls.downloads[key].filename = self.csv_filename(key, tau)
+        return io.StringIO(self.csv_text(key, tau))

@@ -1,0 +1,211 @@
+"""Figures of the app's scenes: one style, one way to draw a glyph, ranges that fit.
+
+A scene (`Scene`) is one Bokeh figure fed by one named `ColumnDataSource`: the figure is
+built once and only its data changes (`source.data = ...`), so that a slider move sends
+numbers, not models.  Sources are named after their scene, so that tests and the browser
+find them with `get_model_by_name`.  The helpers here make every figure look alike
+(`new_figure`, `style_figure`, `draw`, `add_legend`) and fit its ranges to the data
+(`fit_range`, `nice_step`); `png_name` names a plot's PNG download.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import unicodedata
+
+import numpy as np
+from bokeh.models import (
+    ColumnDataSource,
+    CustomJS,
+    Glyph,
+    GlyphRenderer,
+    Legend,
+    LegendItem,
+    Range1d,
+    SaveTool,
+)
+from bokeh.plotting import figure
+
+from core import Contact
+
+TOOLS = "pan,wheel_zoom,box_zoom,reset,save"
+#: Greek letters of the plots' titles, spelled out in the PNG file names
+GREEK = str.maketrans({"α": "alpha", "μ": "mu", "ν": "nu", "τ": "tau", "ψ": "psi",
+                       "ω": "omega", "θ": "theta"})
+CURVE_POINTS = 400  # points per curve over the contact: finer than any screen needs
+PROFILE_POINTS = 151  # points across the contact diameter for the traction profile
+
+LINE_COLORS = ("#000000", "#D55E00", "#0072B2", "#CC79A7", "#009E73")
+#: Bokeh level of everything that changes on an animation frame or a slider move: the
+#: browser then repaints only the plot's overlay layer, not its axes, grid and legend
+#: (repainting a legend restyles the page, which is what costs most in the browser).
+FRAME_LEVEL = "overlay"
+
+
+def style_figure(fig) -> None:
+    """Large type, readable on a projector; the glyphs drawn so far lean (`lean`)."""
+    fig.title.text_font_size = "15pt"
+    for axis in (*fig.xaxis, *fig.yaxis):
+        axis.axis_label_text_font_size = "14pt"
+        axis.major_label_text_font_size = "12pt"
+    fig.toolbar.logo = None
+    fig.toolbar.autohide = True
+    if fig.legend:
+        fig.legend.label_text_font_size = "12pt"
+        fig.legend.background_fill_alpha = 0.7
+        fig.legend.click_policy = "hide"
+    lean(fig)
+
+
+def lean(fig) -> None:
+    """Drop the copies of every glyph that Bokeh's glyph methods make for unselected and
+    for muted points: no plot has a selection tool and every legend hides (never mutes)
+    its curves, so those copies are never drawn; with 'auto' BokehJS makes one if ever
+    needed.  Two models fewer per glyph in every page (each model costs the server
+    per page load)."""
+    for r in fig.renderers:
+        if isinstance(r, GlyphRenderer):
+            r.nonselection_glyph = r.muted_glyph = "auto"
+
+
+#: What `draw` gives the renderer (the rest goes to the glyph), as Bokeh's glyph methods.
+RENDERER_PROPS = ("level", "name", "view", "visible")
+
+
+def draw(fig, glyph: type[Glyph], source: ColumnDataSource | None = None,
+         **props) -> GlyphRenderer:
+    """Draw a `glyph` (a Bokeh glyph type: `Line`, `Segment`, ...) of `props` from
+    `source` on `fig`, as its glyph method (`fig.line`, `fig.segment`, ...) would, as one
+    glyph model where the method makes three (with the copies `lean` drops).  As in the
+    methods, `color` and `alpha` stand for each colour and alpha of the glyph not given
+    (line, fill, hatch, text), strings name the source's columns, and `RENDERER_PROPS`
+    go to the renderer."""
+    renderer = {k: props.pop(k) for k in RENDERER_PROPS if k in props}
+    for trait in ("color", "alpha"):
+        if trait in props:
+            value = props.pop(trait)
+            for prop in glyph.properties():
+                feature, _, rest = prop.partition("_")
+                if rest == trait and feature in VISUALS:
+                    props.setdefault(prop, value)
+    return fig.add_glyph(source or ColumnDataSource(), glyph(**props), **renderer)
+
+
+#: The visual features of a glyph's properties (line_color, fill_alpha, ...).
+VISUALS = ("line", "fill", "hatch", "text", "global")
+
+
+def add_legend(fig, entries: list[tuple[str, list[GlyphRenderer]]], place: str = "right",
+               location: str = "top_left") -> Legend:
+    """A legend that the browser never repaints when the data change.
+
+    BokehJS repaints a legend whenever anything its entries refer to changes, data
+    included, and a legend repaint restyles the page (the costliest part of a slider
+    move).  So each entry shows a copy of its first renderer drawing one NaN point
+    (nowhere; BokehJS draws no legend swatch for an empty renderer), and clicking it
+    hides or shows the real renderers: the copies' callback finds them by id, since a
+    reference to them would tie the legend to their data again.  The copies share one
+    source and one callback.
+    """
+    columns = dict.fromkeys(k for _, renderers in entries for k in renderers[0].data_source.data)
+    nowhere = ColumnDataSource({k: [math.nan] for k in columns})
+    proxies = [fig.add_glyph(nowhere, renderers[0].glyph.clone()) for _, renderers in entries]
+    targets = {proxy.id: [r.id for r in renderers]
+               for proxy, (_, renderers) in zip(proxies, entries, strict=True)}
+    toggle = CustomJS(code=(
+        f"for (const id of {targets!r}[cb_obj.id]) {{\n"
+        "  const r = cb_obj.document.get_model_by_id(id);\n"
+        "  if (r != null) r.visible = cb_obj.visible;\n}"))
+    for proxy in proxies:
+        proxy.js_on_change("visible", toggle)
+    items = [LegendItem(label=label, renderers=[proxy])
+             for (label, _), proxy in zip(entries, proxies, strict=True)]
+    legend = Legend(items=items, location=location, click_policy="hide")
+    place_legend(fig, legend, place)
+    return legend
+
+
+def place_legend(fig, legend: Legend, place: str) -> None:
+    """Put `legend` in `fig`'s side panel `place` ('above', 'right', ...), out of any
+    other: a row above or below (tighter around, wider between entries), a column
+    beside."""
+    for side in ("above", "below", "left", "right", "center"):
+        setattr(fig, side, [m for m in getattr(fig, side) if m is not legend])
+    row = place in ("above", "below")
+    legend.update(orientation="horizontal" if row else "vertical", spacing=16 if row else 3,
+                  padding=5 if row else 10, margin=4 if row else 10)
+    fig.add_layout(legend, place)
+
+
+def nice_step(span: float, parts: int = 10) -> float:
+    """The 1-2-5 x 10^k step nearest above span / parts (span > 0)."""
+    raw = span / parts
+    k = math.floor(math.log10(raw))
+    f = raw / 10.0**k
+    return next(m for m in (1.0, 2.0, 5.0, 10.0) if f <= m * (1 + 1e-12)) * 10.0**k
+
+
+def fit_range(rng: Range1d, *columns, pad: float = 0.06, snap: bool = False) -> None:
+    """Set a fixed range around the finite values of `columns`.
+
+    Ranges are explicit (not auto-ranged) so that moving a marker never makes the
+    browser lay the plot out again: only the data of a frame changes.  With `snap` the
+    ends are rounded outwards to a multiple of a 1-2-5 step of about a tenth of the
+    span, so that a small parameter move usually leaves the range (and the axes, which
+    the browser would otherwise redraw) as they were.
+    """
+    values = np.concatenate([np.ravel(np.asarray(c, float)) for c in columns])
+    values = values[np.isfinite(values)]
+    lo, hi = (float(values.min()), float(values.max())) if values.size else (0.0, 1.0)
+    margin = pad * (hi - lo) if hi > lo else 0.5
+    lo, hi = lo - margin, hi + margin
+    if snap:
+        step = nice_step(hi - lo)
+        lo, hi = math.floor(lo / step) * step, math.ceil(hi / step) * step
+    if (rng.start, rng.end) != (lo, hi):
+        rng.start, rng.end = lo, hi
+
+
+def new_figure(title: str, x_label: str, y_label: str, **kwargs):
+    """A Bokeh figure as every scene has it: unit ranges to be fitted, the scenes'
+    tools, stretching to its column, and a save tool that downloads a PNG named after
+    the title (`png_name`); `kwargs` override these and go to `bokeh.plotting.figure`."""
+    kwargs.setdefault("x_range", Range1d(0, 1))
+    kwargs.setdefault("y_range", Range1d(0, 1))
+    kwargs.setdefault("tools", TOOLS)
+    kwargs.setdefault("sizing_mode", "stretch_width")
+    kwargs.setdefault("height", 340)
+    kwargs.setdefault("min_width", 300)
+    fig = figure(title=title, x_axis_label=x_label, y_axis_label=y_label, **kwargs)
+    for tool in fig.select(type=SaveTool):  # downloads the PNG without asking for a name
+        tool.filename = png_name(title)
+    return fig
+
+
+def png_name(title: str) -> str:
+    """The name (without .png) under which the save tool downloads the plot titled
+    `title`: 'zharii_' and the title's words in lower-case ASCII (Greek letters spelled
+    out, subscripts as digits).  Fixed per plot: a name following the parameters would
+    re-render the tool's button in the browser on every parameter change."""
+    text = unicodedata.normalize("NFKD", title.translate(GREEK)).lower()
+    return "_".join(["zharii", *re.findall(r"[a-z0-9]+", text)])
+
+
+class Scene:
+    """Base: a figure, its named source, and the two update hooks."""
+
+    name: str = ""
+
+    def __init__(self, data: dict) -> None:
+        self.source = ColumnDataSource(data=data, name=self.name)
+
+    def update_contact(self, c: Contact) -> None:
+        """Recompute what depends on the parameters (default: nothing)."""
+
+    def update_tau(self, c: Contact, tau: float) -> None:
+        """Recompute what depends on the current tau (default: nothing)."""
+
+    def table(self) -> dict[str, np.ndarray]:
+        """The data shown, for the CSV download."""
+        return {k: np.asarray(v) for k, v in self.source.data.items()}

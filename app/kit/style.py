@@ -1,0 +1,18 @@
+"""Styles shared by the page and its features (CSS properties and stylesheets)."""
+
+#: The note under the preset selector: what to notice in the figure on screen.
+NOTE_STYLE = {"background": "#eef5fb", "color": "#1b3a57", "border-left": "4px solid #0072B2",
+              "padding": "0.4em 0.8em", "font-size": "1rem"}
+
+#: The warning box above the plots (rejected URL values).
+MESSAGE_STYLE = {"background": "#fff3cd", "color": "#664d03", "border": "1px solid #ffe69c",
+                 "border-radius": "6px", "padding": "0.6em 1em"}
+
+#: Tabs' stylesheet: their titles wrap onto a second row on a narrow screen (BokehJS
+#: scrolls the row sideways, hiding the last titles on a phone).
+TAB_ROW_CSS = ".bk-headers-wrapper { flex-wrap: wrap; }"
+
+#: The formula card's stylesheet: an equation's type (KaTeX's 1.21 em) shrinks with the
+#: card's width below about 500 px, so that the longest (25 em wide) fits a phone's card.
+FORMULA_CSS = (":host { container-type: inline-size; }"
+               " .katex-display > .katex { font-size: min(1.21em, 3.9cqw); }")

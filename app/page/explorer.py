@@ -1,0 +1,217 @@
+"""The page's controller: one session's features, their URL and their messages.
+
+`Explorer` builds the features of one page, the contact (`app.contact.view`), the
+Methods card (`app.methods`) and the Motor card (`app.motor`, built when first opened),
+and holds what belongs to the page rather than to a feature: the URL (`app.page.url`,
+written a moment after the last change), the message banner (refused link values, the
+Motor card's refusals), the view (the full page, or the one-screen presentation) and the
+session's end.  The layout takes the features' views (`app.page.layout`,
+`app.page.presentation`); every number comes from `core` through the features.
+"""
+
+from __future__ import annotations
+
+import html
+import textwrap
+import time
+from functools import partial
+
+import panel as pn
+import param
+from panel.io.location import Location
+from panel.io.resources import get_dist_path
+
+from app.contact.state import ExplorerState
+from app.contact.view import CONTACT_INPUTS, ContactView
+from app.dem.view import DemCard
+from app.kit.style import MESSAGE_STYLE
+from app.kit.widgets import LabelledCheckbox
+from app.methods import MethodsScene
+from app.motor import URL_PARAMS as MOTOR_URL_PARAMS
+from app.motor import MotorScene
+from app.page import layout, presentation, url
+from core import Contact
+
+MESSAGE_CHARS = 400  # a message longer than this (it quotes a long link) is cut
+URL_DELAY_S = 0.4  # the URL follows the parameters this long after the last change (s)
+
+#: What the Motor card's "follow" box puts in the contact's state, and restores.
+FOLLOWED = ("physical", "psi", "tau0", "mu", "nu")
+
+
+class Explorer(param.Parameterized):
+    """One user's page: the features, the URL, the messages."""
+
+    def __init__(self, state: ExplorerState | None = None, query: dict | None = None,
+                 location: Location | None = None) -> None:
+        super().__init__()
+        #: the page's URL (`app.page.guard.location_of`), None without a served page
+        self.location = location
+        self.state = state or ExplorerState()
+        parts = url.split(dict(query or {}))
+        self.messages = url.apply_contact(self.state, parts.contact)
+        #: the page shown: '' (everything) or 'present' (one screen)
+        self.view_name, message = url.view_of(parts.view)
+        self.messages += message
+        self._motor_query = parts.motor  # (applied when the Motor card is built)
+        self._url_pending, self._url_due = False, 0.0
+        self._own: dict | None = None  # the contact's inputs while it follows the rotor
+        self._following = False  # (a change made by following, not by the user)
+
+        self.contact = ContactView(self.state)
+        self.methods = MethodsScene()
+        self.dem = DemCard()  # (a contact of its own: the DEM test cases)
+        self.methods.update_contact(self.contact.shown)
+        self.contact.param.watch(lambda e: self.methods.update_contact(e.new), "shown")
+        self.motor: MotorScene | None = None  # built when its card is first opened
+        self.follow_motor = LabelledCheckbox(
+            label="Show the rotor's contact (at x₀) in the plots above", value=False)
+        self.follow_motor.param.watch(self._on_follow, "value")
+        self.motor_card = pn.Card(title="Motor: the rod, its thrust and speed (Fig. 1)",
+                                  collapsed=True, sizing_mode="stretch_width", margin=6)
+        self.motor_card.param.watch(self._on_motor_card, "collapsed")
+        self.message = pn.pane.HTML("", visible=False, sizing_mode="stretch_width",
+                                    name="query_message", styles=MESSAGE_STYLE)
+        self.show_messages(self.messages)
+        self.state.param.watch(self._on_inputs, list(CONTACT_INPUTS))
+        self.state.param.watch(lambda *_: self.write_url(),
+                               [*CONTACT_INPUTS, "tau", "log_psi", "preset", "material"])
+        self.write_url()
+        if self._motor_query:  # a link to the motor opens it
+            self.motor_card.collapsed = False
+
+    # ---------------------------------------------------------------- messages
+
+    def show_messages(self, messages: list[str]) -> None:
+        """Show warnings (e.g. rejected URL values) above the plots; [] hides them.
+
+        Messages quote what the user sent (the URL's values): they are shown as text,
+        never as markup, long ones cut.  Unchanged messages are not sent again.
+        """
+        text = "<br>".join(html.escape(textwrap.shorten(m, MESSAGE_CHARS, placeholder=" …"))
+                           for m in messages)
+        if text != self.message.object or self.message.visible != bool(messages):
+            self.message.param.update(object=text, visible=bool(messages))
+
+    def _on_inputs(self, *events: param.parameterized.Event) -> None:
+        """The user changed the contact: past messages are done; a contact that followed
+        the rotor no longer does (the user took it over)."""
+        self.show_messages([])
+        if self.follow_motor.value and not self._following:
+            self._own = None  # (nothing to restore: the user's own contact is on screen)
+            self.follow_motor.value = False
+
+    # ------------------------------------------------------------------- motor
+
+    def _on_motor_card(self, event: param.parameterized.Event) -> None:
+        """Build the Motor scene when its card is first opened."""
+        if event.new or self.motor is not None:
+            return
+        self.motor = MotorScene()
+        messages = self.motor.apply_query(self._motor_query)
+        self.motor.on_contact(self._follow)
+        self.motor.state.param.watch(lambda *_: self.write_url(), list(MOTOR_URL_PARAMS))
+        self.motor_card.objects = [self.follow_motor, self.motor]
+        if messages:  # the link's refused motor values
+            self.show_messages([*self.messages, *messages])
+        self.write_url()
+
+    def _on_follow(self, event: param.parameterized.Event) -> None:
+        """Ticked: the plots show the rotor's contact, the user's own kept; unticked:
+        the user's own contact again."""
+        if event.new:
+            self._own = {k: getattr(self.state, k) for k in FOLLOWED}
+            if self.motor is not None:
+                self._follow(self.motor.contact)
+        elif self._own is not None:
+            own, self._own = self._own, None
+            self._set_contact(own)
+
+    def _follow(self, contact: tuple[float, float] | None) -> None:
+        """The scenes above show the rotor's contact (psi, tau0 at x0; its mu, nu), when
+        asked to."""
+        if contact is None or not self.follow_motor.value or self.motor is None:
+            return
+        psi, tau0 = contact
+        mu, nu = self.motor.state.mu, self.motor.motor.equivalent[2]  # (the pair's nu)
+        try:
+            Contact(psi, tau0, mu=mu, nu=nu)
+        except ValueError as err:  # (e.g. a preload so light that tau0 rounds to pi/2)
+            self.show_messages([*self.messages, f"The plots cannot follow the rotor's "
+                                f"contact at x₀: {err}"])
+            return
+        self._set_contact(dict(physical=False, psi=psi, tau0=tau0, mu=mu, nu=nu))
+
+    def _set_contact(self, values: dict) -> None:
+        self._following = True
+        try:
+            self.state.param.update(**values)
+        finally:
+            self._following = False
+
+    # --------------------------------------------------------------------- URL
+
+    def query(self) -> dict[str, str]:
+        """The page's URL query: every feature's part and the view."""
+        return url.join(self.state.query(),
+                        self.motor.query() if self.motor is not None else {},
+                        self.view_name)
+
+    def write_url(self) -> None:
+        """Put the parameters in the page's URL, URL_DELAY_S after the last change.
+
+        Every URL change is a round trip (the browser pushes the history entry and
+        reports the new location back); during a slider drag it would compete with the
+        plots for the browser, so a burst of changes writes the URL once, at its end.
+        """
+        doc = pn.state.curdoc
+        if self.location is None or doc is None:
+            return  # (no page: no URL)
+        self._url_due = time.monotonic() + URL_DELAY_S
+        if not self._url_pending:
+            self._url_pending = True
+            doc.add_timeout_callback(partial(self._flush_url, doc), int(URL_DELAY_S * 1000))
+
+    def _flush_url(self, doc) -> None:
+        wait = self._url_due - time.monotonic()
+        if wait > 0.005:  # changed again meanwhile: wait for the end of the burst
+            doc.add_timeout_callback(partial(self._flush_url, doc), int(wait * 1000))
+            return
+        self._url_pending = False
+        self.location.search = "?" + url.encode(self.query())
+
+    # -------------------------------------------------------------------- page
+
+    def view(self) -> pn.Column:
+        """The page: `app.page.layout.page`, or the one-screen `app.page.presentation`
+        view when the explorer was opened with view=present."""
+        if self.view_name == presentation.VIEW:
+            return presentation.presentation(self.contact, self.message)
+        return layout.page(self.contact, self.message,
+                           [self.contact.fig6_card, self.methods.view(), self.motor_card,
+                            self.dem])
+
+    def servable(self, page: pn.Column | None = None) -> pn.Column:
+        """Mark the page servable in the session being built (`app.page.guard`).
+
+        Panel points its components' stylesheets at its CDN until it renders the page's
+        HTML, and then at the server's own copies.  With `--num-procs` above 1 a page's
+        websocket may reach a process that did not serve the page, which builds the
+        session's document for the websocket alone: its stylesheets would stay on the
+        CDN, which the page's Content-Security-Policy refuses (and an offline classroom
+        cannot reach).  So the document says where they are before it is built."""
+        doc = pn.state.curdoc
+        doc.template_variables.setdefault("dist_url", get_dist_path(cdn=False))
+        page = (page or self.view()).servable(title=layout.TITLE,
+                                              location=self.location or True)
+        doc.template_variables["meta"] = layout.META
+        pn.state.on_session_destroyed(self.close)
+        for slider in self.contact.controls.sliders():
+            slider.follow_browser(doc)  # (its moves without Panel's 50 ms wait)
+        return page
+
+    def close(self, session_context) -> None:
+        """The session ended: stop the Methods and Motor runs."""
+        self.methods.close()
+        if self.motor is not None:
+            self.motor.close()
