@@ -32,6 +32,9 @@ SLIDERS = (("psi", "ψ = tan θ / tan θ₀", 0.05, 30.0, 0.01),
            ("mu", "μ friction", 0.01, 1.0, 0.01),
            ("nu", "ν Poisson ratio", 0.0, 0.49, 0.01))
 
+#: The note of a preset left: in its place, faded.
+LEFT_NOTE_STYLE = {**NOTE_STYLE, "opacity": "0.45"}
+
 #: The CSV downloads: key -> what it holds (`ContactView.csv_text`).
 DOWNLOADS = ("curves", "traction", "impulse")
 
@@ -101,9 +104,15 @@ class Controls:
             state.apply_preset(event.new)
 
     def show_preset(self, name: str, note: str) -> None:
-        """The menu on preset `name` ('' once left) and its note (hidden when empty)."""
+        """The menu on preset `name` ('' once left) and its note.  A preset left keeps its
+        note's box, faded (`LEFT_NOTE_STYLE`): the controls below it stay where they are
+        (a drag that leaves a preset keeps its slider under the pointer)."""
         self.preset_select.value = name
-        self.note.param.update(object=html.escape(note), visible=bool(note))
+        if name:
+            self.note.param.update(object=html.escape(note), visible=bool(note),
+                                   styles=NOTE_STYLE)
+        else:
+            self.note.styles = LEFT_NOTE_STYLE
 
     def show_playing(self, playing: bool) -> None:
         """Play/Pause's label and colour."""

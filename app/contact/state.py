@@ -91,10 +91,12 @@ class Preset:
     tau: float
     log_psi: bool = False
     family: tuple[float, ...] = ()  # further psi values overlaid on T(tau) (Fig. 7)
+    tab: str = "force"  # the curve tab that shows its figure (a scene's name)
 
 
 PRESETS: dict[str, Preset] = {
-    "fig4": Preset("Fig. 4: approach, a, b (ψ = 2.414)", SQRT2_1, TAU0, 3 * PI / 5),
+    "fig4": Preset("Fig. 4: approach, a, b (ψ = 2.414)", SQRT2_1, TAU0, 3 * PI / 5,
+                   tab="radii"),
     "fig6a": Preset("Fig. 6a: loading, τ = π/4", SQRT2_1, TAU0, PI / 4),
     "fig6b": Preset("Fig. 6b: loading, τ = π/3", SQRT2_1, TAU0, PI / 3),
     "fig6c": Preset("Fig. 6c: end of loading, τ = π/2", SQRT2_1, TAU0, PI / 2),
@@ -108,9 +110,9 @@ PRESETS: dict[str, Preset] = {
                     family=(0.4, 0.8, 1.0)),
     "fig7b": Preset("Fig. 7b: T(τ), ψ = 2.41 to 28.35", 6.46, TAU0, PI / 2,
                     family=(2.41, 6.46, 28.35)),
-    "fig8": Preset("Fig. 8: impulse, peak at ψ = 1", 1.0, TAU0, PI / 2),
+    "fig8": Preset("Fig. 8: impulse, peak at ψ = 1", 1.0, TAU0, PI / 2, tab="impulse"),
     "fig9": Preset("Fig. 9: centre motion (ψ = 2.414)", SQRT2_1, TAU0,
-                   2 * PI / 3),
+                   2 * PI / 3, tab="motion"),
 }
 
 DEFAULT_PRESET = "fig6e"
@@ -150,15 +152,17 @@ class ExplorerState(param.Parameterized):
         return Contact(self.psi, self.tau0, mu=self.mu, nu=self.nu)
 
     def matches(self, name: str) -> bool:
-        """Whether the parameters on screen are those of preset `name`."""
+        """Whether the contact on screen is preset `name`'s (at any time tau: the preset
+        is kept while its contact plays, steps or is scrubbed)."""
         p = PRESETS[name]
-        return not self.physical and (self.psi, self.tau0, self.mu, self.nu, self.tau) == (
-            p.psi, p.tau0, 0.2, 0.3, p.tau)
+        return not self.physical and (self.psi, self.tau0, self.mu, self.nu) == (
+            p.psi, p.tau0, 0.2, 0.3)
 
-    @param.depends("psi", "tau0", "mu", "nu", "tau", "physical", watch=True)
+    @param.depends("psi", "tau0", "mu", "nu", "physical", watch=True)
     def _leave_preset(self) -> None:
-        """`preset` names the figure on screen: any other value of its parameters (a
-        slider, a typed value, a step, the animation, SI inputs) leaves it."""
+        """`preset` names the figure whose contact is on screen: any other value of a
+        contact input (a slider, a typed value, SI inputs) leaves it; a change of tau (the
+        animation, a step, the scrubber) does not."""
         if self.preset and not self.matches(self.preset):
             self.preset = ""
 

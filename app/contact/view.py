@@ -88,6 +88,7 @@ class ContactView(param.Parameterized):
         self._stale: set[Scene] = set()
         self._show_figure(0)
         self.tabs.param.watch(self._on_tab, ["active"])
+        self._open_preset_tab()  # (a link to Fig. 8 shows Fig. 8)
         self.fig6_card = pn.Card(title="Fig. 6 in full: the six traction profiles "
                                  "(ψ = 2.414, τ₀ = π/6)", collapsed=True,
                                  sizing_mode="stretch_width", margin=6)
@@ -168,7 +169,7 @@ class ContactView(param.Parameterized):
                 else:
                     self._stale.add(scene)
             self._show_family()
-            self.controls.tau_slider.param.update(start=c.tau0, end=c.tau_end, value=tau)
+            self.controls.tau_slider.set_range(c.tau0, c.tau_end, tau)
             self.readout.show(readout_rows(c))
             self._show_formulas(c, tau)
             self.traction.caption.text = caption(c, tau)
@@ -202,10 +203,16 @@ class ContactView(param.Parameterized):
     @param.depends("state.preset", watch=True)
     def _on_preset(self) -> None:
         """The selector, its note and the T(tau) family follow the state's preset ('' once
-        left)."""
+        left); a preset opens the tab of its figure (Figs. 4, 8, 9)."""
         self.controls.show_preset(self.state.preset, NOTES.get(self.state.preset, ""))
         with hold():
             self._show_family()
+            self._open_preset_tab()
+
+    def _open_preset_tab(self) -> None:
+        preset = PRESETS.get(self.state.preset)
+        if preset is not None:
+            self.tabs.active = [s.name for s in self.tabbed].index(preset.tab)
 
     def _show_family(self) -> None:
         """Overlay the T(tau) curves of the preset's psi family (Fig. 7), or none."""

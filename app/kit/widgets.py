@@ -191,6 +191,7 @@ class ExactSlider(pn.viewable.Viewer):
         if not start < end:
             raise ValueError(f"{label}: start {start} must be below end {end}")
         super().__init__(value=value, start=min(start, value), end=max(end, value))
+        self._range = (start, end)  # the slider's own (teaching) range
         self._parse = parse
         self._digits = digits
         self._doc: Document | None = None  # the served document (`follow_browser`)
@@ -287,10 +288,19 @@ class ExactSlider(pn.viewable.Viewer):
     @param.depends("value", watch=True)
     def _show_value(self) -> None:
         v = self.value
-        if not self.start <= v <= self.end:  # widen the range (`_show_range` follows)
-            self.param.update(start=min(self.start, v), end=max(self.end, v))
+        # the slider's range: its own, widened to show a value typed beyond it, and its
+        # own again once the value is back inside (`_show_range` follows)
+        lo, hi = self._range
+        start, end = min(lo, v), max(hi, v)
+        if (start, end) != (self.start, self.end):
+            self.param.update(start=start, end=end)
         self._slider.value = v  # (Panel sends only what changed)
         self._entry.value = self.text(v)
+
+    def set_range(self, start: float, end: float, value: float) -> None:
+        """Give the slider a new range of its own and the value `value` (in it)."""
+        self._range = (start, end)
+        self.param.update(start=min(start, value), end=max(end, value), value=value)
 
     @param.depends("error", watch=True)
     def _show_error(self) -> None:

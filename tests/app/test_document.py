@@ -308,23 +308,68 @@ def _type_tau(ex: Explorer) -> None:
 
 
 @pytest.mark.parametrize("change", [
-    _type_tau,
-    lambda ex: ex.contact.animation.step(),
-    lambda ex: ex.state.param.update(tau=ex.state.tau + 0.01),  # an animation tick's tau
     lambda ex: ex.state.param.update(physical=True),
     lambda ex: ex.state.param.update(mu=0.25),
-], ids=["typed tau", "step", "animation tau", "SI inputs", "mu"])
-def test_a_change_of_what_a_preset_sets_leaves_it_everywhere(ex: Explorer, change) -> None:
+    lambda ex: ex.contact.controls.psi_slider.param.update(value=7.0),
+], ids=["SI inputs", "mu", "psi"])
+def test_a_change_of_a_contact_input_leaves_the_preset_everywhere(ex: Explorer,
+                                                                   change) -> None:
     ex.contact.controls.preset_select.value = "fig7b"
     assert ex.state.preset == "fig7b" and len(ex.contact.force.family.data["ys"]) == 3
     change(ex)
     assert ex.state.preset == "" and ex.contact.controls.preset_select.value == ""
-    assert ex.contact.force.family.data["ys"] == []  # the preset's family of curves goes with it
+    assert ex.contact.force.family.data["ys"] == []  # the preset's family goes with it
+    assert float(ex.contact.controls.note.styles["opacity"]) < 0.6  # its note faded
     assert "preset" not in ex.state.query()
-    ex.contact.controls.log_box.value = True  # a view option is not a parameter: no preset to leave
+    ex.contact.controls.log_box.value = True  # a view option: no preset to leave
     ex.contact.controls.preset_select.value = "fig6e"
     ex.contact.controls.log_box.value = False
     assert ex.state.preset == "fig6e" == ex.contact.controls.preset_select.value
+
+
+@pytest.mark.parametrize("change", [
+    _type_tau,
+    lambda ex: ex.contact.animation.step(),
+    lambda ex: ex.state.param.update(tau=ex.state.tau + 0.01),  # an animation tick's tau
+    lambda ex: ex.state.param.update(playing=True),
+], ids=["typed tau", "step", "animation tau", "play"])
+def test_a_change_of_tau_keeps_the_preset(ex: Explorer, change) -> None:
+    """The preset names the contact on screen: playing, stepping or scrubbing its contact
+    keeps it, its note (which names its own tau) and its comparison curves."""
+    ex.contact.controls.preset_select.value = "fig7b"
+    tau = ex.state.tau
+    change(ex)
+    ex.state.playing = False  # (a pause keeps it too)
+    assert ex.state.tau != tau or ex.state.playing is False
+    assert ex.state.preset == "fig7b" == ex.contact.controls.preset_select.value
+    assert len(ex.contact.force.family.data["ys"]) == 3
+    assert ex.contact.controls.note.visible
+    q = ex.state.query()
+    assert q["preset"] == "fig7b" and float(q["tau"]) == ex.state.tau
+    again = Explorer(query=q)  # the link restores the preset at the tau shown
+    assert (again.state.preset, again.state.tau) == ("fig7b", ex.state.tau)
+
+
+@pytest.mark.parametrize(("name", "tab"), [("fig4", "radii"), ("fig8", "impulse"),
+                                           ("fig9", "motion"), ("fig7b", "force")])
+def test_a_preset_opens_the_tab_of_its_figure(ex: Explorer, name: str, tab: str) -> None:
+    ex.contact.tabs.active = 3 if tab != "motion" else 0  # another tab open
+    ex.contact.controls.preset_select.value = name
+    assert ex.contact.tabbed[ex.contact.tabs.active].name == tab
+    assert_sources_match_core(ex)
+    linked = Explorer(query={"preset": name})  # a link too
+    assert linked.contact.tabbed[linked.contact.tabs.active].name == tab
+
+
+def test_a_typed_value_widens_a_slider_only_while_it_is_shown(ex: Explorer) -> None:
+    """psi = 1e12 typed in the box stretched the slider to 1e12 for good."""
+    slider = ex.contact.controls.psi_slider
+    own = (slider.start, slider.end)
+    slider._entry.value = "1e12"
+    assert ex.state.psi == 1e12 and slider.end == 1e12
+    slider._entry.value = "3"
+    assert ex.state.psi == 3.0 and (slider.start, slider.end) == own
+    assert (slider._slider.start, slider._slider.end) == own
 
 
 def test_fig6_presets_walk_through_the_phases(ex: Explorer) -> None:
@@ -880,15 +925,19 @@ def test_fig6_small_multiples_are_the_six_profiles_of_the_paper(ex: Explorer) ->
 
 
 def test_each_preset_says_what_to_notice(ex: Explorer) -> None:
-    """Every preset has its note, shown while it is on screen and hidden once left; the
-    notes' checkable claims hold."""
+    """Every preset has its note, shown while it is on screen and faded in its place once
+    left (no layout shift); the notes' checkable claims hold."""
     assert set(NOTES) == set(PRESETS)
+    note = ex.contact.controls.note
     for key in PRESETS:
         ex.contact.controls.preset_select.value = key
-        assert (ex.contact.controls.note.visible and
-                ex.contact.controls.note.object == html.escape(NOTES[key]))
+        assert note.visible and note.object == html.escape(NOTES[key])
+        assert "opacity" not in note.styles
     ex.contact.controls.psi_slider.value = 3.0  # leaves the preset
-    assert not ex.contact.controls.note.visible
+    assert note.visible and note.object == html.escape(NOTES[key])  # the box stays...
+    assert float(note.styles["opacity"]) < 0.6  # ...faded
+    ex.contact.controls.preset_select.value = "fig6e"
+    assert "opacity" not in note.styles
     c = Contact(SQRT2_1, math.pi / 6)
     assert c.tau1 == pytest.approx(3 * math.pi / 4)  # figs 4, 6f
     assert int(c.phase(math.pi / 4)) == Phase.SLIP == int(c.phase(math.pi / 2))  # 6a-6c
