@@ -31,8 +31,11 @@ def opened(browser, url):
     return page, console, T
 
 
-def test_the_motor_card_opens_computes_its_curve_and_drives_the_scenes(browser, url) -> None:
+def test_the_motor_card_opens_computes_its_curve_and_drives_the_scenes_when_asked(
+        browser, url) -> None:
     page, console, T = opened(browser, url)
+    assert column(page, "force", "T") == T  # opening the card leaves the contact alone
+    page.get_by_label("Show the rotor's contact (at x₀) in the plots above").check()
     T = wait_for_new(page, "force", "T", T)  # the scenes above show the rotor's contact
     psi = psi_of(page)
     c = Contact(psi, page.evaluate("() => __slider('tau0').value"),
