@@ -81,6 +81,7 @@ def test_the_links_that_blanked_the_page_build_one(link: str) -> None:
     assert_page(explorer, page)
 
 
+@pytest.mark.slow
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(QUERIES)
 def test_any_query_builds_a_page(query: dict[str, list[str]]) -> None:

@@ -101,6 +101,7 @@ def _load_and_connect(url: str) -> str:
 KINDS = (Explorer, ExplorerState, MethodsScene, Document)
 
 
+@pytest.mark.slow
 def test_sessions_leave_nothing_behind(served) -> None:
     url, server = served
     gc.collect()
