@@ -188,6 +188,10 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
                    help="an origin allowed to open the websocket (repeatable); default "
                         "localhost:PORT and 127.0.0.1:PORT; '*' allows any (opt-in)")
     p.add_argument("--prefix", default="", help="URL prefix, e.g. /explorer")
+    p.add_argument("--behind-proxy", action="store_true",
+                   help="behind a reverse proxy (the shipped nginx): a client's address is "
+                        "the last hop of X-Forwarded-For, which the proxy appends (the "
+                        "page-build limit per address needs it; never set it without one)")
     p.add_argument("--admin", action="store_true",
                    help="serve Panel's /admin page (requires BASIC_AUTH or --basic-auth-file)")
     p.add_argument("--basic-auth-file", default=None, metavar="PATH",
@@ -215,6 +219,7 @@ def server_options(args: argparse.Namespace) -> dict:
         port=args.port, address=args.address, num_procs=args.num_procs,
         websocket_origin=args.allow_websocket_origin, prefix=args.prefix,
         liveness=True, index=None, admin=args.admin,
+        use_xheaders=args.behind_proxy,
         transforms=[NoAutoload, SecurityHeaders, GZipContentEncoding],
         **SESSION,
     )

@@ -144,7 +144,8 @@ class Stack:
                 port = free_port()
                 log = open(self.dir / f"replica{i + 1}.log", "wb")
                 cmd = [self.python, "-m", "app.serve", "--address", "127.0.0.1",
-                       "--port", str(port), "--num-procs", str(self.procs)]
+                       "--port", str(port), "--num-procs", str(self.procs),
+                       "--behind-proxy"]
                 for o in origins:
                     cmd += ["--allow-websocket-origin", o]
                 proc = subprocess.Popen(cmd, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT,

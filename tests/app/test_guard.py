@@ -192,3 +192,14 @@ def test_a_client_past_its_page_builds_gets_the_short_page(served, monkeypatch) 
         texts.append(" ".join(str(getattr(m, "text", "")) for m in new.document.models))
     assert "Too many pages" not in texts[0] and "Too many pages" not in texts[1]
     assert "Too many pages were opened from your network" in texts[2]
+
+
+def test_behind_a_proxy_the_client_is_the_last_forwarded_hop() -> None:
+    """Behind the shipped nginx every request comes from nginx's address: the page-build
+    limit per address would be one limit for a whole class unless the server reads the
+    client's address from X-Forwarded-For (`--behind-proxy`, set by the shipped compose
+    and replica set-ups; never without a proxy, or a client could name any address)."""
+    from app.serve import parse_args, server_options
+
+    assert server_options(parse_args(["--behind-proxy"]))["use_xheaders"] is True
+    assert server_options(parse_args([]))["use_xheaders"] is False

@@ -12,7 +12,6 @@ import threading
 import time
 import tracemalloc
 import urllib.request
-from argparse import Namespace
 from pathlib import Path
 
 import pytest
@@ -26,7 +25,7 @@ from tornado.ioloop import IOLoop
 from app.contact.state import ExplorerState
 from app.methods import MethodsScene
 from app.page.explorer import Explorer
-from app.serve import MAIN, server_options
+from app.serve import MAIN, parse_args, server_options
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -38,9 +37,8 @@ SECRET_KEY = b"a-test-key-of-at-least-thirty-two-characters"  # signs the sessio
 def served():
     """The explorer served by a server on a thread of this process; its URL and server."""
     port = free_port()
-    opts = server_options(Namespace(port=port, address="127.0.0.1", num_procs=1,
-                                    allow_websocket_origin=[f"127.0.0.1:{port}"], prefix="",
-                                    admin=False, basic_auth=None))
+    opts = server_options(parse_args(["--port", str(port),
+                                      "--allow-websocket-origin", f"127.0.0.1:{port}"]))
     opts.update(unused_session_lifetime_milliseconds=LIFETIME_MS,
                 check_unused_sessions_milliseconds=300, secret_key=SECRET_KEY)
     box: dict = {}
