@@ -1,11 +1,13 @@
 """The contact's controls: widgets made from the state's parameters and bound to them.
 
 Sliders with exact entry for psi, tau0, mu and nu (`ExactSlider`, bound both ways to
-the state), the tau scrubber (it writes the state's tau; while playing, the browser's
-player moves it), Play/Pause, Step, Speed, the log-psi box, the preset menu and its note,
-Reset, the SI inputs (`app.contact.physical_inputs`), the formula card and the CSV
-downloads.  Every value a widget takes from the browser reaches the state through
-`app.kit.widgets.bind`/`follow`, which refuse what the state's domain refuses.
+the state), the way the drive is set (by psi, or by its angle theta with its own
+slider) and the note on what mu and nu change, the tau scrubber (it writes the state's
+tau; while playing, the browser's player moves it), Play/Pause, Step, Speed, the log-psi
+box, the preset menu and its note, Reset, the SI inputs (`app.contact.physical_inputs`),
+the formula card and the CSV downloads.  Every value a widget takes from the browser
+reaches the state through `app.kit.widgets.bind`/`follow`, which refuse what the
+state's domain refuses.
 """
 
 from __future__ import annotations
@@ -31,6 +33,19 @@ SLIDERS = (("psi", "ψ = tan θ / tan θ₀", 0.05, 30.0, 0.01),
            ("tau0", "τ₀ (rad): contact starts", -1.5, 1.5, 0.005),
            ("mu", "μ friction", 0.01, 1.0, 0.01),
            ("nu", "ν Poisson ratio", 0.0, 0.49, 0.01))
+
+#: The drive modes' names on their buttons (`ExplorerState.drive`).
+DRIVE_OPTIONS = {"ψ": "psi", "angle θ": "angle"}
+
+#: Under the mu and nu sliders: what they change, per way of setting the drive.
+DRIVE_NOTES = {
+    "psi": "With ψ held, μ and ν leave every plot unchanged: they enter only through "
+           "ψ = tan θ / tan θ₀ and the scales (T₀, a*, p*); they turn θ₀, θ and the "
+           "drive line. Set the drive by its angle θ to see friction change the phases.",
+    "angle": "The drive's angle θ is held: ψ = tan θ / tan θ₀ follows from θ, μ and ν "
+             "(eq 23), so more friction (a larger θ₀) means a smaller ψ and longer stick.",
+    "physical": "ψ and τ₀ follow from the physical inputs (θ = arctan(u₀/H)), μ and ν.",
+}
 
 #: The note of a preset left: in its place, faded.
 LEFT_NOTE_STYLE = {**NOTE_STYLE, "opacity": "0.45"}
@@ -58,6 +73,19 @@ class Controls:
                                  name=name)
             bind(widget, state.param[name])
             setattr(self, f"{name}_slider", widget)
+        self.drive_select = pn.widgets.RadioButtonGroup(
+            name="Set the drive by", options=DRIVE_OPTIONS, value=state.drive,
+            button_type="default", sizing_mode="stretch_width", margin=(5, 10))
+        bind(self.drive_select, state.param.drive)
+        self.drive_control = pn.Column(
+            pn.pane.HTML("Set the drive by", margin=(0, 10)), self.drive_select,
+            sizing_mode="stretch_width", margin=0)
+        self.theta_slider = ExactSlider(
+            label="θ (°): drive angle, tan θ = u₀/H", value=state.theta, start=0.0, end=89.5,
+            step=0.1, parse=partial(parse_value, "theta"), name="theta")
+        bind(self.theta_slider, state.param.theta)
+        self.drive_note = pn.pane.HTML("", sizing_mode="stretch_width", styles=NOTE_STYLE,
+                                       name="drive_note")
         c = state.contact()
         self.tau_slider = ExactSlider(
             label="τ = ωt (rad): time", value=state.tau, start=c.tau0, end=c.tau_end,
@@ -86,8 +114,7 @@ class Controls:
         self.physical_box = self.physical_inputs.physical_box
         self.material_select = self.physical_inputs.material_select
         self.physical_card = self.physical_inputs.card
-        # psi and tau0 follow from SI inputs when they are on (`ContactView.show_state`)
-        self.psi_slider.disabled = self.tau0_slider.disabled = state.physical
+        self.show_drive(state)
         self.formulas = pn.pane.LaTeX(  # (scaled down to fit a narrow card; else scroll)
             "", renderer="katex", sizing_mode="stretch_width", styles={"overflow-x": "auto"},
             stylesheets=[FORMULA_CSS], tags=["formulas"])
@@ -114,6 +141,17 @@ class Controls:
         else:
             self.note.styles = LEFT_NOTE_STYLE
 
+    def show_drive(self, state: ExplorerState) -> None:
+        """The sliders of what follows from other inputs disabled (psi with the drive's
+        angle or SI inputs, theta with psi or SI inputs, tau0 with SI inputs;
+        `ContactView.show_state` derives them) and the note on mu and nu."""
+        angle = state.drive == "angle"
+        self.psi_slider.disabled = state.physical or angle
+        self.tau0_slider.disabled = state.physical
+        self.theta_slider.disabled = state.physical or not angle
+        self.drive_note.object = html.escape(
+            DRIVE_NOTES["physical" if state.physical else state.drive])
+
     def show_playing(self, playing: bool) -> None:
         """Play/Pause's label and colour."""
         self.play_button.param.update(label="‖ Pause" if playing else "▶ Play",
@@ -122,5 +160,5 @@ class Controls:
     def sliders(self) -> list[ExactSlider]:
         """The sliders whose browser moves are taken as they arrive
         (`ExactSlider.follow_browser`)."""
-        return [self.psi_slider, self.tau0_slider, self.mu_slider, self.nu_slider,
-                self.tau_slider]
+        return [self.psi_slider, self.theta_slider, self.tau0_slider, self.mu_slider,
+                self.nu_slider, self.tau_slider]

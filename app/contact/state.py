@@ -25,10 +25,12 @@ TAU0 = PI / 6  # all the paper's figures: H = 2 h
 
 
 #: The app's own settings, beside core's parameters (whose ranges are core.DOMAIN):
-#: the animation speed, in contacts per 4 s, and the time shown, tau (rad), which lies in
-#: one contact [tau0, pi - tau0] (core takes any real tau, modulo 2 pi).
+#: the animation speed, in contacts per 4 s, the time shown, tau (rad), which lies in
+#: one contact [tau0, pi - tau0] (core takes any real tau, modulo 2 pi), and the drive's
+#: angle of incidence theta = arctan(u0 / H) in degrees (eq 23).
 APP_DOMAIN: dict[str, Interval] = {"speed": Interval(0.05, 10.0),
-                                   "tau": Interval(-math.pi / 2, 3 * math.pi / 2)}
+                                   "tau": Interval(-math.pi / 2, 3 * math.pi / 2),
+                                   "theta": Interval(0.0, 90.0)}
 
 
 def domain(name: str) -> Interval:
@@ -61,13 +63,36 @@ def parse_tau(raw: str, c: Contact) -> float:
     return tau
 
 
+def drive_angle(psi: float, mu: float, nu: float) -> float:
+    """The angle of incidence theta (degrees) of drive ratio psi with friction mu and
+    Poisson ratio nu: arctan(psi tan theta0), tan theta0 = mu (2 - nu) / (2 (1 - nu))
+    (eq 23; `core.Contact.theta`)."""
+    return math.degrees(math.atan(psi * _tan_theta0(mu, nu)))
+
+
+def drive_ratio(theta: float, mu: float, nu: float) -> float:
+    """The drive ratio psi = tan theta / tan theta0 (eq 23) of the angle of incidence
+    theta (degrees) with friction mu and Poisson ratio nu."""
+    return math.tan(math.radians(theta)) / _tan_theta0(mu, nu)
+
+
+def _tan_theta0(mu: float, nu: float) -> float:
+    """tan theta0 = mu (2 - nu) / (2 (1 - nu)), as `core.Contact.theta0` takes it."""
+    return math.tan(math.atan(mu * (2.0 - nu) / (2.0 * (1.0 - nu))))
+
+
+#: The ways of setting the drive: by its ratio psi (mu and nu then leave the
+#: dimensionless plots unchanged), or by its angle theta (psi then follows from theta,
+#: mu and nu).
+DRIVES = ("psi", "angle")
+
 #: The physical inputs, in SI units: R, H, u0, h (m), G (Pa), omega (rad/s).
 SI_KEYS = ("R", "G", "H", "u0", "h", "omega")
 
 #: Query parameters written to / read from the URL, in this order.  With physical = 1
 #: the URL holds the physical inputs (SI units), and psi and tau0 follow from them.
-QUERY_KEYS = ("psi", "tau0", "mu", "nu", "tau", "log_psi", "preset", "physical",
-              "material", *SI_KEYS)
+QUERY_KEYS = ("psi", "tau0", "mu", "nu", "tau", "log_psi", "preset", "drive", "theta",
+              "physical", "material", *SI_KEYS)
 
 
 def parse_flag(name: str, raw: str) -> bool:
@@ -132,6 +157,12 @@ class ExplorerState(param.Parameterized):
     speed = param.Number(default=1.0, **bounds("speed"), doc="contacts per 4 s")
     preset = param.String(default=DEFAULT_PRESET,
                           doc="name of the last preset loaded, '' once edited")
+    drive = param.Selector(default="psi", objects=list(DRIVES),
+                           doc="'psi': the drive is set by psi; 'angle': by theta, psi "
+                               "following from theta, mu and nu")
+    theta = param.Number(default=drive_angle(SQRT2_1, 0.2, 0.3), **bounds("theta"),
+                         doc="angle of incidence arctan(u0 / H) (degrees, eq 23); it "
+                             "follows psi unless drive = 'angle'")
 
     physical = param.Boolean(default=False, doc="define the contact by SI inputs")
     material = param.Selector(default="custom", objects=["custom", *MATERIALS],
@@ -145,11 +176,21 @@ class ExplorerState(param.Parameterized):
     omega = param.Number(default=2 * math.pi * 40e3, **bounds("omega"), doc="rad/s")
 
     def contact(self) -> Contact:
-        """The `core.Contact` the current parameters define."""
+        """The `core.Contact` the current parameters define: from the SI inputs, or from
+        the drive's angle theta (drive = 'angle'), or from psi; ValueError if core
+        refuses it."""
         if self.physical:
             return Contact.from_physical(R=self.R, G=self.G, nu=self.nu, mu=self.mu, H=self.H,
                                          u0=self.u0, h=self.h, omega=self.omega)
-        return Contact(self.psi, self.tau0, mu=self.mu, nu=self.nu)
+        return Contact(self.drive_psi(), self.tau0, mu=self.mu, nu=self.nu)
+
+    def drive_psi(self) -> float:
+        """The psi of the drive: the state's own, or with drive = 'angle' the one theta,
+        mu and nu give (eq 23); psi is kept when it already gives theta (switching to
+        'angle' or loading a preset leaves the contact as it is)."""
+        if self.drive == "angle" and drive_angle(self.psi, self.mu, self.nu) != self.theta:
+            return drive_ratio(self.theta, self.mu, self.nu)
+        return self.psi
 
     def matches(self, name: str) -> bool:
         """Whether the contact on screen is preset `name`'s (at any time tau: the preset
@@ -170,13 +211,14 @@ class ExplorerState(param.Parameterized):
         """Load the parameters of preset `name` (a key of PRESETS); KeyError if unknown."""
         p = PRESETS[name]
         self.param.update(physical=False, psi=p.psi, tau0=p.tau0, mu=0.2, nu=0.3, tau=p.tau,
-                          log_psi=p.log_psi, preset=name)
+                          theta=drive_angle(p.psi, 0.2, 0.3), log_psi=p.log_psi, preset=name)
 
     def reset(self) -> None:
         """Back to the defaults (the default preset, speed 1, the default physical inputs
         and material, switched off), animation stopped."""
         self.playing = False
         self.speed = self.param.speed.default
+        self.drive = self.param.drive.default
         self.apply_preset(DEFAULT_PRESET)  # (switches the physical inputs off first)
         self.param.update(**{k: self.param[k].default for k in (*SI_KEYS, "material")})
 
@@ -200,12 +242,18 @@ class ExplorerState(param.Parameterized):
         physical inputs; with them on, psi and tau0 follow from them and are left out)."""
         # repr: the shortest text that reads back as the same float (a link restores the
         # very state, the preset included)
-        keys = ("mu", "nu", "tau") if self.physical else ("psi", "tau0", "mu", "nu", "tau")
+        # with drive = angle both psi and theta: theta sets the drive, psi (which gives
+        # theta) restores the very float
+        angle = self.drive == "angle"
+        keys = ("mu", "nu", "tau") if self.physical else (
+            "psi", *(("theta",) if angle else ()), "tau0", "mu", "nu", "tau")
         q = {k: repr(float(getattr(self, k))) for k in keys}
         if self.log_psi:
             q["log_psi"] = "1"
         if self.preset:
             q["preset"] = self.preset
+        if angle:
+            q["drive"] = "angle"
         if self.physical:
             q["physical"] = "1"
             if self.material != "custom":
@@ -231,6 +279,8 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
     `pn.state.session_args`).  Returns `(values, messages)`: the accepted values as
     parameter updates for `ExplorerState`, and one human-readable message per
     rejected value (whose default is then kept).  Unknown names are reported too.
+    With drive = angle the contact's drive is its angle theta (degrees) and psi follows
+    from theta, mu and nu (eq 23).
     A `preset` is applied first, then a `material` (G, nu, mu, physical = 1); explicit
     values then override them (and the state leaves the preset or the material if they
     differ from its values).  With physical = 1, R, G, H, u0, h (m, Pa) and omega
@@ -251,7 +301,7 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
         if name in PRESETS:
             p = PRESETS[name]
             values.update(psi=p.psi, tau0=p.tau0, mu=0.2, nu=0.3, tau=p.tau, log_psi=p.log_psi,
-                          preset=name)
+                          theta=drive_angle(p.psi, 0.2, 0.3), preset=name)
         else:
             messages.append(f"preset = {name!r} is unknown (known: {', '.join(PRESETS)})")
 
@@ -266,8 +316,14 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
             messages.append(f"material = {name!r} is unknown "
                             f"(known: {', '.join(MATERIALS)}, custom)")
 
+    if "drive" in flat:
+        if flat["drive"] in DRIVES:
+            values["drive"] = flat["drive"]
+        else:
+            messages.append(f"drive = {flat['drive']!r} is unknown (known: {', '.join(DRIVES)})")
+
     explicit = set()
-    for key in ("psi", "tau0", "mu", "nu", *SI_KEYS):
+    for key in ("psi", "tau0", "mu", "nu", "theta", *SI_KEYS):
         if key in flat:
             try:
                 values[key] = parse_value(key, flat[key])
@@ -281,6 +337,28 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
                 values[key] = parse_flag(key, flat[key])
             except ValueError as err:
                 messages.append(str(err))
+
+    if "theta" in explicit and values.get("drive") != "angle":
+        messages.append(f"theta = {flat['theta']!r} ignored: it sets the drive only with "
+                        f"drive = angle")
+        del values["theta"]
+    elif values.get("drive") == "angle" and not values.get("physical"):
+        theta, mu, nu = (values.get(k, ExplorerState.param[k].default)
+                         for k in ("theta", "mu", "nu"))
+        if "psi" in values and drive_angle(values["psi"], mu, nu) == theta:
+            values["theta"] = theta  # (psi gives theta: kept, as ExplorerState.drive_psi)
+        else:
+            try:
+                psi = parse_value("psi", repr(drive_ratio(theta, mu, nu)))
+            except ValueError as err:
+                messages.append(f"the drive angle is not applied: {err}")
+                values["drive"] = "psi"
+                values.pop("theta", None)
+            else:
+                if "psi" in explicit:
+                    messages.append(f"psi = {flat['psi']!r} ignored: with drive = angle it "
+                                    f"follows from theta, mu and nu")
+                values.update(psi=psi, theta=theta)
 
     if values.get("physical"):
         inputs = {k: values.get(k, ExplorerState.param[k].default)

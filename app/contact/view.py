@@ -38,14 +38,14 @@ from app.contact.notes import NOTES
 from app.contact.player import Player
 from app.contact.readout import Readout
 from app.contact.spheres import SpheresScene
-from app.contact.state import PRESETS, SI_KEYS, ExplorerState
+from app.contact.state import PRESETS, SI_KEYS, ExplorerState, drive_angle
 from app.contact.traction import DiscScene, TractionScene
 from app.kit.figures import Scene
 from app.kit.style import TAB_ROW_CSS
 from core import Contact
 
 #: The state's parameters that define the contact (`ExplorerState.contact`).
-CONTACT_INPUTS = ("psi", "tau0", "mu", "nu", "physical", *SI_KEYS)
+CONTACT_INPUTS = ("psi", "tau0", "mu", "nu", "drive", "theta", "physical", *SI_KEYS)
 
 #: The curve tabs' titles, in the order of `ContactView.tabbed`.
 TAB_TITLES = ("T(τ) (Fig. 7)", "Impulse (Fig. 8)", "Radii (Fig. 4b)", "Centre motion (Fig. 9)")
@@ -103,18 +103,22 @@ class ContactView(param.Parameterized):
         what depends on tau if its tau is not the one shown, else nothing.
 
         A state that needs correcting first (with SI inputs psi and tau0 follow from
-        them; tau is kept inside the contact) is corrected, and the change that makes
-        calls this again to show it.  SI inputs that core refuses together are not
+        them; with drive = 'angle' psi follows from theta, mu and nu; else theta, in
+        degrees, follows psi, mu and nu (eq 23); tau is kept inside the contact) is
+        corrected, and the change that makes calls this again to show it.  SI inputs
+        that core refuses together, or a drive angle whose psi core refuses, are not
         applied (the physical inputs' card says why, under its boxes)."""
         s = self.state
-        self.controls.psi_slider.disabled = self.controls.tau0_slider.disabled = s.physical
+        self.controls.show_drive(s)
         try:
             c = s.contact()
         except ValueError:
-            if s.physical:
+            if s.physical or s.drive == "angle":
                 return
             raise
-        fixes = {"psi": c.psi, "tau0": c.tau0} if s.physical else {}
+        fixes = {"psi": c.psi, "tau0": c.tau0} if s.physical else {"psi": c.psi}
+        if s.physical or s.drive == "psi":
+            fixes["theta"] = drive_angle(c.psi, s.mu, s.nu)
         fixes["tau"] = min(max(s.tau, c.tau0), c.tau_end)
         fixes = {k: v for k, v in fixes.items() if getattr(s, k) != v}
         if fixes:
