@@ -16,3 +16,14 @@ TAB_ROW_CSS = ".bk-headers-wrapper { flex-wrap: wrap; }"
 #: card's width below about 500 px, so that the longest (25 em wide) fits a phone's card.
 FORMULA_CSS = (":host { container-type: inline-size; }"
                " .katex-display > .katex { font-size: min(1.21em, 3.9cqw); }")
+
+#: Text for a screen reader only: out of sight, yet in the accessibility tree (not
+#: `display: none`, which would take it out).
+VISUALLY_HIDDEN_CSS = (":host { position: absolute !important; width: 1px !important;"
+                       " height: 1px !important; overflow: hidden !important;"
+                       " clip-path: inset(50%) !important; white-space: nowrap;"
+                       " margin: 0 !important; }")
+
+#: BokehJS's tab titles hidden: the page draws its own tab list (`app.kit.widgets.TabList`,
+#: keyboard operable) above the Tabs' content.
+HIDE_TAB_HEADERS_CSS = ".bk-header { display: none; }"

@@ -2,18 +2,24 @@
 
 Sizes and type are for a projector (17 px base, never below 16 px); on a phone the cards
 stack.  Every control shows a ring when the keyboard is on it, and the sidebar's
-"Keyboard" card lists the keys the page answers to.
+"Keyboard" card lists the keys the page answers to.  For a screen reader the page has
+landmarks (banner, the sidebar a complementary region, main), each plot a name and a
+description that follows the state (`app.page.explorer.descriptions`), a polite live
+region announcing a change of phase, and the curve tabs are a keyboard-operable tab
+list (`app.kit.widgets.TabList`).
 """
 
 from __future__ import annotations
 
 import html
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import panel as pn
 
 from app.contact.phases import STYLES
-from app.contact.view import ContactView
+from app.contact.view import TAB_TITLES, ContactView
+from app.kit.widgets import KeyShortcut, Landmark, TabList
 from core import Phase
 
 #: Colour key of the contact disc (the figure has no legend, see DiscScene).
@@ -94,12 +100,16 @@ class Keys:
     opposite: bool = False
 
 
+#: The key that plays or pauses, anywhere but in a text box, with Alt
+#: (`app.kit.widgets.KeyShortcut`).
+PLAY_KEY = "k"
+
 #: The keys the page answers to (the sliders are `app.kit.widgets.LabelledSlider`s, range
-#: inputs with Page Up / Down added; text boxes, menus, check boxes and buttons are the
-#: browser's own).  The curve tabs are not listed: BokehJS's tabs answer to the mouse
-#: only.
+#: inputs with Page Up / Down added; the curve tabs an `app.kit.widgets.TabList`; text
+#: boxes, menus, check boxes and buttons are the browser's own).
 KEYS = (
     Keys("Anywhere", ("Tab", "Shift+Tab"), "next / previous control", opposite=True),
+    Keys("Anywhere", (f"Alt+{PLAY_KEY.upper()}",), "play or pause (not in a text box)"),
     Keys("Slider", ("ArrowLeft", "ArrowRight"), "one step down / up", opposite=True),
     Keys("Slider", ("ArrowDown", "ArrowUp"), "one step down / up", opposite=True),
     Keys("Slider", ("PageDown", "PageUp"), "five steps down / up", opposite=True),
@@ -109,11 +119,15 @@ KEYS = (
     Keys("Check box", ("Space",), "tick or untick it"),
     Keys("Menu", ("ArrowDown", "ArrowUp"), "next / previous choice", opposite=True),
     Keys("Card title", ("Enter", "Space"), "open or close the card"),
+    Keys("Curve tabs", ("ArrowLeft", "ArrowRight"), "previous / next tab", opposite=True),
+    Keys("Curve tabs", ("Home", "End"), "first / last tab", opposite=True),
+    Keys("Curve tabs", ("Enter", "Space"), "open the tab"),
 )
 
 #: How the keyboard card shows a key.
 KEY_NAMES = {"ArrowLeft": "←", "ArrowRight": "→", "ArrowDown": "↓", "ArrowUp": "↑",
-             "PageDown": "Page Down", "PageUp": "Page Up", "Shift+Tab": "Shift + Tab"}
+             "PageDown": "Page Down", "PageUp": "Page Up", "Shift+Tab": "Shift + Tab",
+             f"Alt+{PLAY_KEY.upper()}": f"Alt + {PLAY_KEY.upper()}"}
 
 #: The keyboard card's look: a group per target, keys drawn as keycaps.
 KEYS_CSS = """
@@ -158,14 +172,40 @@ META = {"viewport": "width=device-width, initial-scale=1",
                        "oblique frictional contact (O. Yu. Zharii, 1996)"}
 
 
+def play_key(contact: ContactView) -> KeyShortcut:
+    """Alt + `PLAY_KEY` anywhere on the page (not in a text box) does what Play / Pause
+    does."""
+    key = KeyShortcut(key=PLAY_KEY)
+    key.param.watch(lambda _: setattr(contact.state, "playing", not contact.state.playing),
+                    "presses")
+    return key
+
+
+def curve_tabs(contact: ContactView) -> TabList:
+    """The contact's curve tabs under a keyboard-operable tab list (`TabList`)."""
+    return TabList.for_tabs(contact.tabs, list(TAB_TITLES), label="Curves over the contact",
+                            sizing_mode="stretch_width")
+
+
+def described(pane: pn.viewable.Viewable, key: str,
+              descriptions: Mapping[str, pn.viewable.Viewable]) -> list:
+    """`pane` and, when there is one, the description `key` of its plot."""
+    return [pane, descriptions[key]] if key in descriptions else [pane]
+
+
 def page(contact: ContactView, message: pn.viewable.Viewable,
-         cards: list[pn.viewable.Viewable]) -> pn.Column:
+         cards: list[pn.viewable.Viewable],
+         descriptions: Mapping[str, pn.viewable.Viewable] | None = None,
+         announcer: pn.viewable.Viewable | None = None) -> pn.Column:
     """The explorer's page: a header, the controls in a sidebar, the scenes beside it (a
     plain Panel layout: a template's header, modal and theming tripled the server's work
     per page load); on a narrow screen the sidebar stacks above the scenes.  `contact`
     gives the scenes and controls, `message` is the page's banner, `cards` the cards
-    below the scenes (Fig. 6 in full, Methods, Motor)."""
+    below the scenes (Fig. 6 in full, Methods, Motor); `descriptions` the plots' names
+    and descriptions for a screen reader (by `app.page.explorer.PLOT_NAMES`' keys),
+    `announcer` the live region that announces a change of phase."""
     ui = contact.controls
+    descriptions = descriptions or {}
     sidebar = [
         ui.preset_select,
         ui.note,
@@ -179,27 +219,36 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
         ui.physical_card,
         pn.Row(ui.downloads["traction"], ui.downloads["impulse"]),
         keyboard_card(),
+        play_key(contact),
     ]
     main = [
         message,
+        *([announcer] if announcer is not None else []),
         pn.FlexBox(
-            card(pn.pane.Bokeh(contact.spheres.figure, sizing_mode="stretch_width"),
+            card(*described(pn.pane.Bokeh(contact.spheres.figure, sizing_mode="stretch_width"),
+                            "spheres", descriptions),
                  title="The two spheres (Fig. 2)", flex="0 1 440px"),
-            card(pn.pane.Bokeh(contact.traction.figure, sizing_mode="stretch_width"),
+            card(*described(pn.pane.Bokeh(contact.traction.figure,
+                                          sizing_mode="stretch_width"),
+                            "traction", descriptions),
                  title="Traction profile (Fig. 6)", flex="3 1 560px"),
-            card(pn.pane.Bokeh(contact.disc.figure), pn.pane.HTML(DISC_KEY),
-                 title="Contact disc", flex="0 0 380px"),
+            card(*described(pn.pane.Bokeh(contact.disc.figure), "disc", descriptions),
+                 pn.pane.HTML(DISC_KEY), title="Contact disc", flex="0 0 380px"),
             card(ui.formulas, title="Formulas of the current phase", flex="2 1 480px"),
             card(contact.readout, title="Derived quantities", flex="1 1 380px"),
-            card(contact.tabs, title="Curves over the contact", flex="1 1 100%"),
+            card(*described(curve_tabs(contact), "curves", descriptions),
+                 title="Curves over the contact", flex="1 1 100%"),
             sizing_mode="stretch_width", align_content="flex-start"),
         *cards,
     ]
     use_css()
     return pn.Column(
-        heading(),
+        Landmark(object=heading(), role="banner", sizing_mode="stretch_width", margin=0),
         pn.FlexBox(
-            pn.Column(*sidebar, styles={"flex": "0 1 370px", "min-width": "0"}),
-            pn.Column(*main, styles={"flex": "1 1 600px", "min-width": "0"}),
+            Landmark(object=pn.Column(*sidebar, sizing_mode="stretch_width"),
+                     role="complementary", label="Controls",
+                     styles={"flex": "0 1 370px", "min-width": "0"}),
+            Landmark(object=pn.Column(*main, sizing_mode="stretch_width"), role="main",
+                     styles={"flex": "1 1 600px", "min-width": "0"}),
             flex_wrap="wrap", align_items="flex-start", sizing_mode="stretch_width"),
         sizing_mode="stretch_width")

@@ -18,6 +18,8 @@ have the aspect of their ranges.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import panel as pn
 
 from app.contact.view import ContactView
@@ -68,9 +70,12 @@ def aspect(fig) -> float:
     return (fig.x_range.end - fig.x_range.start) / (fig.y_range.end - fig.y_range.start)
 
 
-def presentation(contact: ContactView, message: pn.viewable.Viewable) -> pn.Column:
+def presentation(contact: ContactView, message: pn.viewable.Viewable,
+                 descriptions: Mapping[str, pn.viewable.Viewable] | None = None,
+                 announcer: pn.viewable.Viewable | None = None) -> pn.Column:
     """The one-screen page of `contact`'s scenes and controls, with the page's banner
-    `message`."""
+    `message`; `descriptions` and `announcer` as for `app.page.layout.page` (out of
+    sight: they take no room), and the same play / pause key."""
     ui = contact.controls
     spheres = contact.spheres.figure
     contact.spheres.badge.glyph.text_font_size = BADGE_FONT
@@ -118,7 +123,9 @@ def presentation(contact: ContactView, message: pn.viewable.Viewable) -> pn.Colu
         sizing_mode="stretch_both",
         styles={"flex": "1 1 0", "min-height": "0", "container-type": "size",
                 "gap": f"{GAP}px"})
+    unseen = [layout.play_key(contact), *(descriptions or {}).values(),
+              *([announcer] if announcer is not None else [])]
     layout.use_css()
     # one screen high: the scenes take what the header and the controls leave
-    return pn.Column(header, controls, message, scenes, sizing_mode="stretch_both",
+    return pn.Column(header, controls, message, scenes, *unseen, sizing_mode="stretch_both",
                      styles={"height": "100vh"})
