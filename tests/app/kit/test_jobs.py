@@ -3,24 +3,10 @@ every outcome handed back, nothing left running."""
 
 from __future__ import annotations
 
-import threading
-
 import pytest
+from jobs_helpers import blocked
 
 from app.kit.jobs import JobRunner
-
-
-def blocked(runner: JobRunner) -> threading.Event:
-    """Occupy the runner's worker until the returned event is set."""
-    gate, started = threading.Event(), threading.Event()
-
-    def hold() -> None:
-        started.set()
-        gate.wait(10)
-
-    runner.submit("blocker", hold, lambda _: None)
-    assert started.wait(10)
-    return gate
 
 
 def test_owners_are_served_in_turn_and_a_newer_job_replaces_a_waiting_one() -> None:

@@ -7,13 +7,13 @@ from __future__ import annotations
 import csv
 import io
 import re
-import threading
 from importlib.metadata import version
 
 import numpy as np
 import pandas as pd
 import pytest
 from bokeh.models import ColorBar
+from jobs_helpers import blocked
 from test_document import assert_sources_match_core, contact_of
 
 import app.methods.data
@@ -118,19 +118,6 @@ def test_missing_numerics_shows_a_note(monkeypatch: pytest.MonkeyPatch) -> None:
 # ------------------------------------------------------------ the job runner
 
 
-def blocked() -> threading.Event:
-    """Occupy the runner's worker (another session's job) until the event is set."""
-    gate, started = threading.Event(), threading.Event()
-
-    def hold() -> None:
-        started.set()
-        gate.wait(30)
-
-    RUNNER.submit("another session", hold, lambda _: None)
-    assert started.wait(30)
-    return gate
-
-
 def opened() -> MethodsScene:
     s = MethodsScene()
     s.update_contact(Contact(2.414, 0.5236))
@@ -142,7 +129,7 @@ def opened() -> MethodsScene:
 def test_a_newer_run_replaces_the_waiting_one_and_only_it_is_shown() -> None:
     numerics = pytest.importorskip("core.numerics")
     s = opened()
-    gate = blocked()
+    gate = blocked(RUNNER)
     try:
         s.choice.value = ["mdr"]
         s.choice.value = ["annulus"]  # replaces the waiting run
@@ -162,7 +149,7 @@ def test_a_closed_card_drops_its_waiting_run_and_asks_for_nothing_more() -> None
     pytest.importorskip("core.numerics")
     s = opened()
     shown = s.source.data
-    gate = blocked()
+    gate = blocked(RUNNER)
     try:
         s.choice.value = ["mdr"]
         assert RUNNER.waiting() == 1

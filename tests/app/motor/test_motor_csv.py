@@ -25,14 +25,6 @@ DEFAULT_SI = {"L": ("m", 0.02), "delta": ("m", 0.004), "nu_rod": ("", 0.31),
               "N": ("N", 0.5)}
 
 
-@pytest.fixture
-def scene() -> MotorScene:
-    s = MotorScene()
-    wait()
-    yield s
-    s.close()
-
-
 def inputs_si(s: MotorScene) -> dict[str, tuple[str, float]]:
     """The inputs (SI unit, value) of the core motor built here (`motor_of`), x0 too."""
     m, x0 = motor_of(s)

@@ -4,41 +4,19 @@ only the newest result is shown; a failed job ends the progress and says why."""
 
 from __future__ import annotations
 
-import threading
-
 import pytest
+from jobs_helpers import blocked
 from test_motor_scene import assert_curve_matches_core, wait
 
 from app.kit.jobs import RUNNER
 from app.motor import MotorScene
 
 
-@pytest.fixture
-def scene() -> MotorScene:
-    s = MotorScene()
-    wait()
-    yield s
-    s.close()
-
-
-def blocked() -> threading.Event:
-    """Occupy the runner's worker (another session's job) until the event is set."""
-    gate, started = threading.Event(), threading.Event()
-
-    def hold() -> None:
-        started.set()
-        gate.wait(30)
-
-    RUNNER.submit("another session", hold, lambda _: None)
-    assert started.wait(30)
-    return gate
-
-
 def test_a_closed_scene_drops_its_waiting_job_and_asks_for_nothing_more() -> None:
     s = MotorScene()
     wait()
     shown = s.results
-    gate = blocked()
+    gate = blocked(RUNNER)
     try:
         s.inputs["x0"].value = -2.0
         assert RUNNER.waiting() == 1 and s.progress.visible
@@ -55,7 +33,7 @@ def test_a_closed_scene_drops_its_waiting_job_and_asks_for_nothing_more() -> Non
 def test_a_newer_request_replaces_the_waiting_one_and_only_it_is_shown() -> None:
     s = MotorScene()
     wait()
-    gate = blocked()
+    gate = blocked(RUNNER)
     try:
         s.inputs["x0"].value = -2.0
         s.inputs["x0"].value = -4.0  # replaces the waiting request

@@ -9,7 +9,6 @@ import math
 
 import numpy as np
 import panel as pn
-import pytest
 from bokeh.document import Document
 from test_motor_scene import wait
 
@@ -19,14 +18,6 @@ from core.materials import PRESETS
 from core.motor import Motor, operating_point, start_up, wear_along_rod
 
 eq = np.testing.assert_array_equal
-
-
-@pytest.fixture
-def scene() -> MotorScene:
-    s = MotorScene()
-    wait()
-    yield s
-    s.close()
 
 
 def test_the_card_holds_every_plot(scene: MotorScene) -> None:

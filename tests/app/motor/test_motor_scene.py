@@ -29,14 +29,6 @@ from core.motor import (
 eq = np.testing.assert_array_equal
 
 
-@pytest.fixture
-def scene() -> MotorScene:
-    s = MotorScene()
-    wait()
-    yield s
-    s.close()
-
-
 def wait() -> None:
     """Wait for the runner's jobs (the card's results shown)."""
     assert RUNNER.idle(60)
