@@ -23,7 +23,7 @@ dt' = dv / (r(v) - l).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
@@ -31,6 +31,7 @@ from scipy.integrate import cumulative_trapezoid, quad, solve_ivp
 from scipy.interpolate import PchipInterpolator
 from scipy.optimize import brentq
 
+from core.frozen import freeze
 from core.motor.motor import Motor
 from core.motor.moving_rotor import (
     SPRINGS,
@@ -159,12 +160,7 @@ class StartUp:
     periods_per_unit: float
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            value = getattr(self, f.name)
-            if isinstance(value, np.ndarray):
-                value = np.array(value)
-                value.setflags(write=False)
-                object.__setattr__(self, f.name, value)
+        freeze(self, arrays_only=True)
 
     @property
     def energy_residual(self) -> NDArray[np.float64]:

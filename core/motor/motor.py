@@ -13,12 +13,13 @@ the rod, vectorised over the contact point x0. See docs/physics.md, section 10.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from core.contact import Contact
+from core.frozen import freeze
 from core.motor import balance, thrust
 from core.motor.rod import POSITIVE, Rod
 from core.physical import beta_warning, dundurs_beta, equivalent_pair
@@ -52,10 +53,7 @@ class MotorProfile:
     beta: float = 0.0
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            value = np.array(getattr(self, f.name))  # a copy, also of 0-d results
-            value.setflags(write=False)
-            object.__setattr__(self, f.name, value)
+        freeze(self)  # (copies, also of 0-d results)
 
 
 @dataclass(frozen=True)

@@ -37,12 +37,13 @@ the discretisation error (``MovingRotor.energy_residual``).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq, minimize_scalar
 
+from core.frozen import freeze
 from core.numerics import mdr
 from core.numerics.loading import trapezoid
 from core.numerics.result import check_resolution
@@ -107,12 +108,7 @@ class MovingRotor:
     steps: int
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            value = getattr(self, f.name)
-            if isinstance(value, np.ndarray):
-                value = np.array(value)
-                value.setflags(write=False)
-                object.__setattr__(self, f.name, value)
+        freeze(self, arrays_only=True)
 
     @property
     def energy_residual(self) -> NDArray[np.float64]:

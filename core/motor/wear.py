@@ -18,13 +18,14 @@ wears (valid while the depth is small against the approach H - h), and only slip
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from core import dissipation
 from core.contact import Contact
+from core.frozen import freeze
 from core.motor.motor import Motor
 from core.motor.moving_rotor import MovingRotor
 from core.physical import SQRT8
@@ -69,10 +70,7 @@ class WearProfile:
     centre_depth_rate: NDArray[np.float64]
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            value = np.array(getattr(self, f.name))
-            value.setflags(write=False)
-            object.__setattr__(self, f.name, value)
+        freeze(self)  # (copies, also of 0-d results)
 
 
 def wear_along_rod(motor: Motor, x0: ArrayLike, wear_coefficient: float, hardness: float
