@@ -74,8 +74,8 @@ class Controls:
             bind(widget, state.param[name])
             setattr(self, f"{name}_slider", widget)
         self.drive_select = pn.widgets.RadioButtonGroup(
-            name="Set the drive by", options=DRIVE_OPTIONS, value=state.drive,
-            button_type="default", sizing_mode="stretch_width", margin=(5, 10))
+            label="Set the drive by", options=DRIVE_OPTIONS, value=state.drive,
+            sizing_mode="stretch_width", margin=(5, 10))
         bind(self.drive_select, state.param.drive)
         self.drive_control = pn.Column(
             pn.pane.HTML("Set the drive by", margin=(0, 10)), self.drive_select,

@@ -14,6 +14,12 @@ Displacements are exaggerated: the normal amplitude H is drawn as `DRIVE` sphere
 and u0 at the true angle theta up to `MAX_SIDE` radii (the scale is stated on the plot).
 The contact patch is drawn with core's a / a* on that exaggerated scale.
 
+Below them, a strip shows one whole period (tau from -pi/2 to 3 pi/2): the lower
+sphere's height u_z0 / H = sin tau (eq 3), the contact (sin tau > sin tau0, eq 4)
+shaded, the gaps before and after it marked "apart", and the current tau marked
+(`drawing` at a tau in the gap draws the spheres apart: no patch, no force).  The
+other plots stay on the contact.
+
 Every number comes from `core` through `drawing(c, taus)`, which gives each source's
 columns at K times as arrays of shape (K, n): `update_tau` shows one time, the browser's
 player (`app.contact.player`) copies the frames of a whole contact.
@@ -34,6 +40,7 @@ from bokeh.models import (
     Scatter,
     Segment,
     Text,
+    VArea,
 )
 from bokeh.plotting import figure
 
@@ -50,6 +57,21 @@ OUTLINE_POINTS = 97  # points of each sphere's outline
 HEAD_SIZE = 13  # arrow heads, screen pixels
 
 _ANGLES = np.linspace(0.0, 2.0 * math.pi, OUTLINE_POINTS)
+
+#: The period strip: tau from PERIOD[0] to PERIOD[1] drawn across x in [-1.5, 1.5]
+#: sphere radii, sin tau as STRIP_HEIGHT radii about y = STRIP_Y.
+PERIOD = (-math.pi / 2, 3 * math.pi / 2)
+STRIP_Y, STRIP_HEIGHT = -2.95, 0.22
+
+
+def strip_x(taus: np.ndarray) -> np.ndarray:
+    """The x (sphere radii) of the times `taus` (rad) on the period strip."""
+    return -1.5 + 3.0 * (np.asarray(taus, float) - PERIOD[0]) / (PERIOD[1] - PERIOD[0])
+
+
+def strip_y(taus: np.ndarray) -> np.ndarray:
+    """The y (sphere radii) of the lower sphere's height sin tau (eq 3) on the strip."""
+    return STRIP_Y + STRIP_HEIGHT * np.sin(np.asarray(taus, float))
 
 
 def drawn_amplitudes(c: Contact) -> tuple[float, float]:
@@ -145,6 +167,7 @@ def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
         "spheres_patch": patch,
         "spheres_forces": forces,
         "spheres_badge": badge,
+        "spheres_period_marker": {"x": strip_x(taus)[:, None], "y": strip_y(taus)[:, None]},
     }
 
 
@@ -162,16 +185,31 @@ class SpheresScene(Scene):
         self.still = ColumnDataSource({"x0": [], "y0": [], "x1": [], "y1": []},
                                       name="spheres_drive")
         self.rest = ColumnDataSource({"x": [], "y": []}, name="spheres_rest")
+        #: the period strip: the height sin tau, the contact shaded, the words
+        self.period = ColumnDataSource({"x": [], "y": []}, name="spheres_period")
+        self.period_contact = ColumnDataSource({"x": [], "lo": [], "hi": []},
+                                               name="spheres_period_contact")
+        self.period_words = ColumnDataSource({"x": [], "text": []},
+                                             name="spheres_period_words")
         # equal scales on both axes: the plot area (about 400 x 560 px) spans 3.2 x 4.5
         # (scaled down, its aspect kept, on a screen narrower than that)
-        fig = figure(title="Two spheres in section", width=420, height=640, max_width=420,
+        # (and 0.95 R more below, for the period strip)
+        fig = figure(title="Two spheres in section", width=420, height=757, max_width=420,
                      sizing_mode="scale_width", x_range=Range1d(-1.6, 1.6),
-                     y_range=Range1d(-2.45, 2.1), tools="save", toolbar_location="above",
+                     y_range=Range1d(-3.4, 2.1), tools="save", toolbar_location="above",
                      x_axis_type=None, y_axis_type=None)  # (no axes, no grid)
         fig.select_one(SaveTool).filename = png_name(fig.title.text)
         s = self.sources
         draw(fig, Line, self.rest, x="x", y="y", line_dash="dashed", color="#999999",
              line_width=1.5)
+        draw(fig, VArea, self.period_contact, x="x", y1="lo", y2="hi", fill_color="#D55E00",
+             fill_alpha=0.2)
+        draw(fig, Line, self.period, x="x", y="y", color="#333333", line_width=2)
+        draw(fig, Text, self.period_words, x="x", y=STRIP_Y + STRIP_HEIGHT + 0.03,
+             text="text", text_align="center", text_baseline="bottom", text_font_size="10pt",
+             text_color="#333333")
+        draw(fig, Scatter, s["spheres_period_marker"], x="x", y="y", size=11,
+             color="#D55E00", line_color="black", level=FRAME_LEVEL)
         for name, fill in (("spheres_upper", "#d9d9d9"), ("spheres_lower", "#bfbfbf")):
             draw(fig, Patch, s[name], x="x", y="y", fill_color=fill, line_color="black",
                  line_width=2, level=FRAME_LEVEL)
@@ -217,6 +255,15 @@ class SpheresScene(Scene):
             "dashed: at rest, h ≤ 0 (a preload)"
         self.h_label.text = f"{gap}\ndrive line at θ = {math.degrees(c.theta):.1f}°"
         self.note.text = scale_note(c)
+        taus = np.unique(np.concatenate([np.linspace(*PERIOD, 241), [c.tau0, c.tau_end]]))
+        show(self.period, inline({"x": strip_x(taus), "y": strip_y(taus)}))
+        inside = taus[(taus >= c.tau0) & (taus <= c.tau_end)]
+        show(self.period_contact, inline({"x": strip_x(inside), "lo": strip_y(inside),
+                                          "hi": np.full(inside.size, STRIP_Y + STRIP_HEIGHT)}))
+        words = {"apart": (PERIOD[0] + c.tau0) / 2, "contact": math.pi / 2,
+                 "apart ": (c.tau_end + PERIOD[1]) / 2}
+        show(self.period_words, {"x": list(strip_x(np.array(list(words.values())))),
+                                 "text": [w.strip() for w in words]})
 
     @staticmethod
     def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
