@@ -1,0 +1,143 @@
+"""The log filter of a closed websocket's queued messages (app/page/limits.py) and the
+abuse benchmark's pure helpers (benchmarks/app/load_test.py)."""
+
+from __future__ import annotations
+
+import json
+import logging
+import sys
+from pathlib import Path
+
+import pytest
+from bokeh.server.connection import ServerConnection
+
+from app.page.limits import (
+    CLOSED_SEND,
+    PROTOCOL_LOGGER,
+    Burst,
+    closed_send,
+    detached_session,
+    quiet_closed_connections,
+)
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks" / "app"))
+import load_test
+
+
+def detached_error() -> tuple:
+    """The exc_info of Bokeh's own AssertionError: the session of a connection that
+    was detached (what each message queued on a closed websocket raises)."""
+    class Session:  # what a connection asks of its session
+        def subscribe(self, connection) -> None: ...
+        def unsubscribe(self, connection) -> None: ...
+
+    conn = ServerConnection(None, None, None, Session())
+    conn.detach_session()  # what Bokeh does when the websocket closes
+    try:
+        conn.session  # noqa: B018
+    except AssertionError:
+        return sys.exc_info()
+    raise AssertionError("Bokeh's connection no longer asserts a session")
+
+
+def record(msg: str = "error handling message", exc_info=None, name=PROTOCOL_LOGGER,
+           args=()) -> logging.LogRecord:
+    return logging.LogRecord(name, logging.ERROR, __file__, 1, msg, args, exc_info)
+
+
+class Clock:
+    def __init__(self) -> None:
+        self.now = 0.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+def test_matchers_pick_only_the_closed_connection_records():
+    assert detached_session(record(exc_info=detached_error()))
+    try:
+        raise AssertionError("another assertion")
+    except AssertionError:
+        other = sys.exc_info()
+    assert not detached_session(record(exc_info=other))
+    assert not detached_session(record())
+    assert closed_send(record(CLOSED_SEND))
+    assert not closed_send(record("Failed sending %s", args=("x",)))
+
+
+def test_burst_logs_one_line_per_window_and_counts_the_rest():
+    clock = Clock()
+    f = Burst(detached_session, "dropped", window=10.0, clock=clock)
+    err = detached_error()
+    first = f.filter(record(exc_info=err))
+    assert isinstance(first, logging.LogRecord)
+    assert first.exc_info is None and first.exc_text is None
+    assert first.getMessage() == "dropped (further ones within 10 s not logged)"
+    for t in range(1, 977):  # the 977 of issue 22, all within the window
+        clock.now = t * 0.005
+        assert f.filter(record(exc_info=err)) is False
+    assert f.dropped == 976
+    clock.now = 20.0
+    line = f.filter(record(exc_info=err))
+    assert line.getMessage() == ("dropped (further ones within 10 s not logged; 976 more "
+                                 "like it in the previous 10 s not logged)")
+    assert f.dropped == 0
+    plain = record("something else")  # passes unchanged, its traceback too
+    assert f.filter(plain) is True
+
+
+def test_quiet_closed_connections_turns_a_flood_into_one_line(caplog):
+    filters = quiet_closed_connections(window=60.0)
+    try:
+        log = logging.getLogger(PROTOCOL_LOGGER)
+        err = detached_error()
+        with caplog.at_level(logging.INFO, logger=PROTOCOL_LOGGER):
+            for _ in range(50):
+                log.error("error handling message", exc_info=err)
+            log.error("a real error")
+        lines = [r for r in caplog.records if r.name == PROTOCOL_LOGGER]
+        assert [r.getMessage().split(" (")[0] for r in lines] == [
+            "messages that arrived on a websocket after it closed were dropped",
+            "a real error"]
+        assert lines[0].exc_info is None
+        assert "Traceback" not in caplog.text
+    finally:
+        for name, f in filters:
+            logging.getLogger(name).removeFilter(f)
+
+
+def window(kind: str, p95: float, answered: int = 60, sent: int = 66, **more) -> dict:
+    return {"kind": kind, "p50_ms": p95 / 2, "p95_ms": p95, "answered": answered,
+            "moves_sent": sent, "server_cpu_pct": 40, "log_lines": 3, "tracebacks": 0,
+            "abuser": more}
+
+
+def test_abuse_summary_and_table():
+    rows = [dict(window("baseline", 100.0), **{"for": "nan"}),
+            dict(window("nan", 140.0, sent=100), **{"for": "nan"}),
+            dict(window("baseline", 80.0), **{"for": "pull-doc"}),
+            dict(window("pull-doc", 400.0, answered=20, replies=69), **{"for": "pull-doc"})]
+    summary = load_test.abuse_summary(rows)
+    assert [(s["kind"], s["ratio"], s["met"]) for s in summary] == [
+        ("nan", pytest.approx(1.4), True), ("pull-doc", pytest.approx(5.0), False)]
+    table = load_test.abuse_table(rows).splitlines()
+    assert len(table) == 4
+    assert table[2].startswith("| nan | 50 / 70 | 100 / 140 | 1.40 | yes | 60/66 / 60/100 |")
+    assert table[3].startswith("| pull-doc | 40 / 200 | 80 / 400 | 5.00 | **no** |")
+    assert table[3].endswith("| 0 | replies 69 |")
+
+
+def test_methods_controls_found_in_the_cards_patch():
+    patch = {"events": [{"kind": "ModelChanged", "new": [
+        {"type": "object", "name": "MultiChoice", "id": "p1",
+         "attributes": {"options": ["mdr", "annulus"], "value": ["mdr"]}},
+        {"type": "object", "name": "panel.models.widgets.CustomSelect", "id": "p2",
+         "attributes": {"options": [["1.0", "default"], ["16.0", "16 × default"]]}},
+        {"type": "object", "name": "CheckboxGroup", "id": "p3",
+         "attributes": {"labels": [load_test.LIVE_LABEL]}}]}]}
+    assert load_test.methods_controls([json.dumps(patch)]) == {
+        "methods": ("p1", ["mdr", "annulus"]), "resolution": ("p2", "16.0"),
+        "live": ("p3", [0])}
+    with pytest.raises(LookupError, match="live"):
+        patch["events"][0]["new"].pop()
+        load_test.methods_controls([json.dumps(patch)])
