@@ -530,12 +530,14 @@ class KeyShortcut(pn.reactive.ReactiveHTML):
 
 class LiveText(pn.reactive.ReactiveHTML):
     """Text a screen reader announces when it changes, politely (an `aria-live="polite"`
-    status region, kept in the page while its `text` changes); out of sight."""
+    status region, kept in the page while its `text`, shown as text, changes); out of
+    sight."""
 
     text = param.String(default="")
 
-    _template = ('<div id="region" role="status" aria-live="polite" aria-atomic="true">'
-                 '${text}</div>')
+    _template = '<div id="region" role="status" aria-live="polite" aria-atomic="true"></div>'
+    _scripts: ClassVar[dict[str, str]] = dict.fromkeys(
+        ("render", "text"), "region.textContent = data.text;")  # (text, never markup)
 
     def __init__(self, **params) -> None:
         params["stylesheets"] = [VISUALLY_HIDDEN_CSS, *params.get("stylesheets", [])]

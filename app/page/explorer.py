@@ -174,7 +174,7 @@ class Explorer(param.Parameterized):
         phase = int(c.phase(tau))
         if phase != self._announced and phase != Phase.NO_CONTACT:
             self._announced = phase
-            self.announcer.text = html.escape(announcement(c, tau))
+            self.announcer.text = announcement(c, tau)
 
     # ---------------------------------------------------------------- messages
 

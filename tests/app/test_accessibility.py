@@ -3,18 +3,23 @@
 An axe-core audit (axe-playwright-python), the size of the controls' text, the ring
 around the control the keyboard is on, the names of the inputs as Chromium computes them
 (its accessibility tree), the page's Tab stops, the derived-quantities table as text,
-and every key the "Keyboard" card lists, pressed where it says.
+every key the "Keyboard" card lists, pressed where it says, the curve tabs by keyboard
+(WAI-ARIA's tabs pattern), the play / pause key, the landmarks, the plots' names and
+descriptions, and the live region's announcement of a change of phase.
 """
 
 from __future__ import annotations
 
 import pytest
-from explorer_browser import open_explorer, wait_until
+from explorer_browser import column, open_explorer, wait_until
 
 from app.contact.data import readout_rows
 from app.contact.readout import CAPTION
 from app.contact.state import ExplorerState
-from app.page.layout import KEY_NAMES, KEYS
+from app.contact.view import TAB_TITLES
+from app.page.explorer import PLOT_NAMES, announcement, descriptions
+from app.page.layout import FOCUS_COLOR, KEY_NAMES, KEYS, PLAY_KEY
+from core import Contact
 
 pytestmark = pytest.mark.browser
 
@@ -123,6 +128,13 @@ def test_axe_finds_nothing_serious_or_critical(axe_findings) -> None:
     (BokehJS's Spinner draws its buttons without text)."""
     assert {rule: [n["target"] for n in nodes]
             for rule, nodes in grave(axe_findings).items()} == {}
+
+
+def test_axe_finds_no_landmark_problem(axe_findings) -> None:
+    """A `main` landmark, and no content outside the landmarks (axe's rules 'region' and
+    'landmark-*'; Panel's layouts carry no role: `app.kit.widgets.Landmark`)."""
+    assert [(f["id"], len(f["nodes"])) for f in axe_findings
+            if f["id"] == "region" or f["id"].startswith("landmark")] == []
 
 
 # ---------------------------------------------------------------- type size
@@ -469,5 +481,224 @@ def test_keyboard_card_lists_keys_that_work(browser, url) -> None:
     page.keyboard.press("Space")
     keys_table.wait_for(state="visible")
     done |= {("Card title", "Enter"), ("Card title", "Space")}
+
+    # the curve tabs: along the list and back, its ends, open a tab by Enter and Space
+    page.evaluate(JS_TABS)
+    page.get_by_role("tab", selected=True).focus()
+    for key, focused in (("ArrowRight", "Impulse (Fig. 8)"), ("ArrowLeft", "T(τ) (Fig. 7)"),
+                         ("End", "Centre motion (Fig. 9)"), ("Home", "T(τ) (Fig. 7)")):
+        page.keyboard.press(key)
+        assert tab_state(page)["focused"] == focused
+        done.add(("Curve tabs", key))
+    for key, index in (("ArrowRight", None), ("Enter", 1), ("ArrowRight", None),
+                       ("Space", 2)):
+        page.keyboard.press(key)
+        if index is not None:
+            wait_tab(page, index)
+            done.add(("Curve tabs", key))
+
+    # play and pause, the keyboard on a tab
+    play = f"Alt+{PLAY_KEY.upper()}"
+    page.keyboard.press(play)
+    page.wait_for_function(f"() => ({JS_PLAY_LABEL})() === '‖ Pause'", timeout=20_000)
+    page.keyboard.press(play)
+    page.wait_for_function(f"() => ({JS_PLAY_LABEL})() === '▶ Play'", timeout=20_000)
+    done.add(("Anywhere", play))
     page.close()
     assert done == {(k.target, key) for k in KEYS for key in k.keys}
+
+
+# ---------------------------------------------------- screen readers: the tree
+
+
+def ax_nodes(page) -> list[dict]:
+    """The role, name and description of every node of Chromium's accessibility tree
+    that is not ignored (what a screen reader meets)."""
+    cdp = page.context.new_cdp_session(page)
+    nodes = cdp.send("Accessibility.getFullAXTree")["nodes"]
+    return [{"role": n.get("role", {}).get("value"),
+             "name": n.get("name", {}).get("value", ""),
+             "description": n.get("description", {}).get("value", "")}
+            for n in nodes if not n.get("ignored")]
+
+
+def test_page_has_its_landmarks(browser, url) -> None:
+    """The header a banner, the sidebar a complementary region named "Controls", the
+    scenes the main region: one of each."""
+    page, _ = open_explorer(browser, url)
+    roles = [(n["role"], n["name"]) for n in ax_nodes(page)
+             if n["role"] in ("banner", "complementary", "main")]
+    page.close()
+    assert sorted(roles) == [("banner", ""), ("complementary", "Controls"), ("main", "")]
+
+
+def figures(page) -> dict[str, str]:
+    """Name -> description of every figure of the accessibility tree."""
+    return {n["name"]: n["description"] for n in ax_nodes(page) if n["role"] == "figure"}
+
+
+def test_every_plot_is_named_and_described_and_follows_psi(browser, url) -> None:
+    """Each plot has a name (its card's title) and a description of what it shows, in
+    core's numbers, which follows a psi move."""
+    page, _ = open_explorer(browser, url)
+    page.wait_for_function("() => Bokeh.documents[0].is_idle")
+    state = ExplorerState()
+    expected = descriptions(state.contact(), state.tau, 0)
+    assert figures(page) == {PLOT_NAMES[k]: text for k, text in expected.items()}
+    assert "partial stick" in expected["traction"]
+    page.locator(".slider-psi input[type=range]").focus()
+    page.keyboard.press("End")  # psi to the end of its range
+    page.wait_for_function("() => __psi() === __slider('psi').end", timeout=20_000)
+    state.psi = page.evaluate("() => __psi()")
+    wait_until(lambda: figures(page)[PLOT_NAMES["traction"]] != expected["traction"],
+               what="the traction plot's description to follow psi")
+    tau = page.evaluate("() => __slider('tau').value")
+    moved = descriptions(Contact(state.psi, state.tau0, mu=state.mu, nu=state.nu), tau, 0)
+    wait_until(lambda: figures(page) == {PLOT_NAMES[k]: t for k, t in moved.items()},
+               what="every description to follow psi")
+    page.close()
+
+
+def live_text(page) -> str:
+    return page.locator("[role=status][aria-live=polite]").text_content().strip()
+
+
+def test_live_region_announces_a_change_of_phase(browser, url) -> None:
+    """A polite live region says the phase entered, and when it began: at psi = 2.414,
+    back to the contact's start (its first phase), then past pi/2 (partial stick)."""
+    page, _ = open_explorer(browser, url)
+    state = ExplorerState()
+    c = state.contact()
+    assert c.psi == pytest.approx(2.414, abs=1e-3)
+    assert live_text(page) == ""  # nothing said at load
+    box = page.get_by_role("textbox", name="τ = ωt (rad): time")
+    box.fill("0.6")
+    box.press("Enter")
+    first = announcement(c, 0.6)
+    wait_until(lambda: live_text(page) == first, what=f"the live region to say {first!r}")
+    box.fill("1.6")
+    box.press("Enter")
+    second = announcement(c, 1.6)
+    assert second == "Partial stick from τ = 1.571 rad"
+    wait_until(lambda: live_text(page) == second, what=f"the live region to say {second!r}")
+    page.close()
+
+
+# ------------------------------------------------------------- curve tabs
+
+#: JavaScript: the curve tabs' Bokeh model (Panel's Tabs, its titles `TAB_TITLES`) and
+#: the tab list's (`app.kit.widgets.TabList`).
+JS_TABS = """() => {
+  const models = [...Bokeh.documents[0].all_models];
+  window.__tabs = models.find((m) => m.type.endsWith(".Tabs") && m.tabs.length > 0
+                              && m.tabs[0].title === "T(τ) (Fig. 7)");
+  window.__tablist = models.find((m) => m.data != null && m.data.titles !== undefined);
+}"""
+
+
+def tab_state(page) -> dict:
+    """The tabs' aria-selected, the tab the keyboard is on, and the models' indices."""
+    return page.evaluate("""() => ({
+      selected: [...__all((el) => el.getAttribute("role") === "tab")].map(
+        (el) => el.getAttribute("aria-selected")),
+      focused: __deep() && __deep().getAttribute("role") === "tab" ? __deep().textContent
+                                                                    : null,
+      active: __tabs.active, value: __tablist.data.value})""")
+
+
+def wait_tab(page, index: int) -> None:
+    """Wait until tab `index` is open: the Tabs model's `active` and aria-selected."""
+    page.wait_for_function(
+        """(i) => __tabs.active === i && [...__all((el) => el.getAttribute("role") === "tab")]
+           .map((el) => el.getAttribute("aria-selected") === "true").indexOf(true) === i""",
+        arg=index, timeout=20_000)
+
+
+def test_curve_tabs_follow_the_tabs_pattern(browser, url) -> None:
+    """The curve tabs are a tab list (roles tablist, tab, tabpanel): the arrows move the
+    keyboard along it (round), Home / End to its ends, Enter and Space open the tab the
+    keyboard is on; only the open tab is a Tab stop; its panel is named after it."""
+    page, _ = page_with_cards_open(browser, url)
+    page.evaluate(JS_TABS)
+    tabs = page.get_by_role("tab")
+    assert [tabs.nth(i).text_content() for i in range(tabs.count())] == list(TAB_TITLES)
+    assert page.get_by_role("tablist", name="Curves over the contact").count() == 1
+    assert tab_state(page)["selected"] == ["true", "false", "false", "false"]
+    assert page.evaluate("() => __all((el) => el.getAttribute('role') === 'tab')"
+                         ".map((el) => el.tabIndex)") == [0, -1, -1, -1]
+    assert column(page, "impulse", "psi") is None  # its tab is closed: not in the page
+    page.get_by_role("tab", selected=True).focus()
+    page.keyboard.press("ArrowRight")
+    state = tab_state(page)
+    assert state["focused"] == "Impulse (Fig. 8)" and state["active"] == 0  # moved only
+    page.keyboard.press("Enter")
+    wait_tab(page, 1)
+    page.wait_for_function("() => (__col('impulse', 'psi') || []).length > 0",
+                           timeout=20_000)
+    assert page.get_by_role("tabpanel", name="Impulse (Fig. 8)").count() == 1
+    page.keyboard.press("End")
+    assert tab_state(page)["focused"] == "Centre motion (Fig. 9)"
+    page.keyboard.press("Home")
+    assert tab_state(page)["focused"] == "T(τ) (Fig. 7)"
+    page.keyboard.press("ArrowLeft")  # round: from the first to the last
+    assert tab_state(page)["focused"] == "Centre motion (Fig. 9)"
+    page.keyboard.press("Space")
+    wait_tab(page, 3)
+    page.wait_for_function("() => (__col('motion', 'u2') || []).length > 0", timeout=20_000)
+    page.close()
+
+
+def test_a_tab_index_from_a_script_that_names_no_tab_changes_nothing(browser, url) -> None:
+    page, _ = open_explorer(browser, url)
+    page.evaluate(JS_A11Y)
+    page.evaluate(JS_TABS)
+    for bad in (7, -1, 1.5):
+        page.evaluate("(v) => { __tablist.data.value = v; }", bad)
+        page.wait_for_function("() => __tablist.data.value === 0", timeout=20_000)
+        assert page.evaluate("() => __tabs.active") == 0
+    page.close()
+
+
+def test_tab_focus_ring_is_visible(browser, url) -> None:
+    """The ring around the tab the keyboard is on: 3 px, 2 px outside it, at 3:1 at
+    least against the white page and the unselected tabs' grey (WCAG 2.4.13)."""
+    page, _ = open_explorer(browser, url)
+    page.evaluate(JS_A11Y)
+    page.get_by_role("tab", selected=True).focus()
+    page.keyboard.press("ArrowRight")
+    ring = page.evaluate("""() => { const s = getComputedStyle(__deep());
+      return [s.outlineStyle, parseFloat(s.outlineWidth), parseFloat(s.outlineOffset),
+              s.outlineColor, getComputedStyle(__deep()).backgroundColor]; }""")
+    page.close()
+    style, width, offset, color, background = ring
+    assert style == "solid" and width >= 3 and offset >= 2
+    assert rgb(color) == rgb_hex(FOCUS_COLOR)
+    for behind in ((255, 255, 255), rgb(background)):
+        assert contrast(rgb(color), behind) >= 3
+
+
+def rgb_hex(color: str) -> tuple[float, ...]:
+    return tuple(float(int(color[i:i + 2], 16)) for i in (1, 3, 5))
+
+
+# ------------------------------------------------------------ play / pause key
+
+#: JavaScript: the label of the Play / Pause button's model.
+JS_PLAY_LABEL = """() => [...Bokeh.documents[0].all_models].find(
+  (m) => m.type.endsWith("Button") && /Play|Pause/.test(m.label || "")).label"""
+
+
+def test_play_key_plays_and_pauses(browser, url) -> None:
+    """Alt + K, wherever the keyboard is but in a text box, plays; again, pauses: the
+    button says so and the time moves."""
+    page, _ = open_explorer(browser, url)
+    assert page.evaluate(JS_PLAY_LABEL) == "▶ Play"
+    tau = page.evaluate("() => __slider('tau').value")
+    page.get_by_role("button", name="Step").focus()
+    page.keyboard.press(f"Alt+{PLAY_KEY.upper()}")
+    page.wait_for_function(f"() => ({JS_PLAY_LABEL})() === '‖ Pause'", timeout=20_000)
+    page.wait_for_function("(t) => __slider('tau').value !== t", arg=tau, timeout=20_000)
+    page.mouse.click(1, 1)  # the keyboard on the page itself
+    page.keyboard.press(f"Alt+{PLAY_KEY.upper()}")
+    page.wait_for_function(f"() => ({JS_PLAY_LABEL})() === '▶ Play'", timeout=20_000)
+    page.close()
