@@ -50,6 +50,8 @@ PAYLOADS = {
     "u0": "<i id=xss-u0>u0</i>",
     "h": "<u id=xss-h>h</u>",
     "omega": "<s id=xss-omega>omega</s>",
+    "drive": "<marquee id=xss-drive>drive</marquee>",
+    "theta": "<img src=x id=xss-theta onerror=alert('theta')>",
     "<img src=x id=xss-key onerror=alert('key')>": "1",
 }
 
