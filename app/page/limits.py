@@ -1,5 +1,5 @@
-"""One log line per burst, not a traceback per message, when a websocket closes with
-messages still queued.
+"""One log line per burst, not a traceback per message: a websocket closed with messages
+still queued, and websockets naming a session id this server did not sign.
 
 A client that sends many messages without waiting for the answers (e.g. PULL-DOC
 requests in a loop) and then closes leaves them in the server's read buffer.  Tornado
@@ -10,6 +10,12 @@ session; for each, Bokeh 3.10 logs an ``AssertionError`` traceback
 (``bokeh.server.views.ws``), and once the queue is done Tornado logs one more traceback
 of the same assertion for the connection's second close (``tornado.application``:
 ``Uncaught exception GET /main/ws``).  Nothing is lost: the client is gone.
+
+A websocket whose token is not signed with the server's key is refused before any
+document is built, but Bokeh logs an error naming the session id and then raises
+``ProtocolError`` from the handler's ``open``, which Tornado logs as an uncaught
+exception with its traceback: 17 lines for each attempt, ~3,300 attempts in 20 s from
+one client on loopback.
 
 `quiet_closed_connections` puts a `Burst` filter on each of those three loggers: the
 first such record of a burst is logged as one line without its traceback, the others
@@ -34,16 +40,38 @@ TORNADO_LOGGER = "tornado.application"
 #: Bokeh's warning for a reply written to a closed websocket (its exact text).
 CLOSED_SEND = "Failed sending message as connection was closed"
 
+#: Bokeh's error for a websocket token not signed with the server's key (its format).
+BAD_SIGNATURE = "Token for session %r had invalid signature"
+
+
+def raised_in(record: logging.LogRecord, error: type[BaseException], function: str,
+              path: str) -> bool:
+    """Whether `record` carries an `error` raised in `function` of the file ending with
+    `path` (the last frame of its traceback)."""
+    exc = record.exc_info
+    if not exc or not isinstance(exc[1], error) or exc[2] is None:
+        return False
+    last = traceback.extract_tb(exc[2])[-1]
+    return last.name == function and last.filename.replace("\\", "/").endswith(path)
+
 
 def detached_session(record: logging.LogRecord) -> bool:
     """Whether `record` carries Bokeh's AssertionError for a connection whose session
     was already detached (raised in ``bokeh/server/connection.py``'s ``session``)."""
-    exc = record.exc_info
-    if not exc or not isinstance(exc[1], AssertionError) or exc[2] is None:
-        return False
-    last = traceback.extract_tb(exc[2])[-1]
-    return (last.name == "session"
-            and last.filename.replace("\\", "/").endswith("bokeh/server/connection.py"))
+    return raised_in(record, AssertionError, "session", "bokeh/server/connection.py")
+
+
+def refused_token(record: logging.LogRecord) -> bool:
+    """Whether `record` carries the ProtocolError Bokeh raises opening a websocket whose
+    token is not signed with the server's key (logged by Tornado as uncaught)."""
+    from bokeh.protocol.exceptions import ProtocolError
+
+    return raised_in(record, ProtocolError, "open", "bokeh/server/views/ws.py")
+
+
+def bad_signature(record: logging.LogRecord) -> bool:
+    """Whether `record` is Bokeh's error for a token with an invalid signature."""
+    return record.msg == BAD_SIGNATURE
 
 
 def closed_send(record: logging.LogRecord) -> bool:
@@ -82,8 +110,9 @@ class Burst(logging.Filter):
 
 
 def quiet_closed_connections(window: float = 10.0) -> list[tuple[str, Burst]]:
-    """Put a `Burst` filter on each logger that writes a line per message queued on a
-    closed websocket; returns the (logger name, filter) pairs (call once, at start)."""
+    """Put a `Burst` filter on each logger that writes lines per message queued on a
+    closed websocket or per websocket refused for its token's signature; returns the
+    (logger name, filter) pairs (call once, at start)."""
     filters = [
         (PROTOCOL_LOGGER, Burst(detached_session, "messages that arrived on a websocket "
                                 "after it closed were dropped (Bokeh's AssertionError)",
@@ -92,6 +121,11 @@ def quiet_closed_connections(window: float = 10.0) -> list[tuple[str, Burst]]:
                           window)),
         (TORNADO_LOGGER, Burst(detached_session, "a websocket closed with messages "
                                "queued (Bokeh's AssertionError on its second close)",
+                               window)),
+        (WS_LOGGER, Burst(bad_signature, "websockets refused: session token not signed "
+                          "with this server's key", window)),
+        (TORNADO_LOGGER, Burst(refused_token, "websockets refused: session token not "
+                               "signed with this server's key (Bokeh's ProtocolError)",
                                window)),
     ]
     for name, f in filters:

@@ -463,9 +463,13 @@ async def run_levels(url: str, levels: list[int], duration: float, warmup: float
 # ---------------------------------------------------------------- abuse
 
 
-#: The abusive clients of `--abuse`, in the order they run (``page-loop`` last: it uses
-#: up the page builds of the address every client here shares, 127.0.0.1).
-ABUSE_KINDS = ("invented-ids", "pull-doc", "methods-16x", "nan", "page-loop")
+#: The abusive clients of `--abuse`, in the order they run (the page loops last: they
+#: use up the page builds of the address every client here shares, 127.0.0.1).
+#: ``page-loop`` is recorded from the loop's first request (the address's burst of page
+#: builds, `app.page.guard.BUILDS`, is spent in the window); ``page-loop-steady`` from
+#: its first refused page on (one build per refill, refusals between).
+ABUSE_KINDS = ("invented-ids", "pull-doc", "methods-16x", "nan", "page-loop",
+               "page-loop-steady")
 
 #: The probe's p95 under abuse may be at most this many times its baseline (issue 22).
 ABUSE_TARGET = 1.5
@@ -531,13 +535,18 @@ async def paced(stop: asyncio.Event, rate: float):
 
 
 async def abuse_page_loop(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
-                          counts: dict) -> None:
-    """GET the page in a loop, each as soon as the previous one is answered."""
+                          counts: dict, ready: asyncio.Event | None = None) -> None:
+    """GET the page in a loop, each as soon as the previous one is answered; `ready` (if
+    given) is set at the first refused page, and only then are pages counted."""
     while not stop.is_set():
         r = await http.fetch(url, request_timeout=60, raise_error=False)
         body = r.body.decode(errors="replace") if r.body else ""
         key = ("refused" if REFUSAL_TEXT in body else "built" if r.code == 200
                else f"HTTP {r.code}")
+        if ready is not None and not ready.is_set():
+            if key != "refused":
+                continue
+            ready.set()
         counts[key] = counts.get(key, 0) + 1
 
 
@@ -643,8 +652,19 @@ async def abuse_nan(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
         s.close()
 
 
+async def abuse_page_loop_steady(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
+                                 counts: dict, ready: asyncio.Event) -> None:
+    """`abuse_page_loop`, recorded once the address's page builds are spent."""
+    await abuse_page_loop(url, http, stop, counts, ready)
+
+
+#: The abusers that set their `ready` event themselves (the others are recorded from
+#: their start).
+PRELUDE = {"page-loop-steady": abuse_page_loop_steady}
+
 ABUSERS = {"page-loop": abuse_page_loop, "invented-ids": abuse_invented_ids,
-           "pull-doc": abuse_pull_doc, "methods-16x": abuse_methods_16x, "nan": abuse_nan}
+           "pull-doc": abuse_pull_doc, "methods-16x": abuse_methods_16x, "nan": abuse_nan,
+           **PRELUDE}
 
 
 def log_lines(log: Path | None) -> tuple[int, int]:
@@ -675,11 +695,16 @@ async def abuse_window(probe: Session, kind: str | None, url: str, http: AsyncHT
     and the lines the server logged from its start until its log was quiet again."""
     stats = Stats()
     counts: dict = {}
-    stop = asyncio.Event()
+    stop, ready = asyncio.Event(), asyncio.Event()
+    task = None
+    if kind in PRELUDE:  # the abuser runs unrecorded until it says it is ready
+        task = asyncio.create_task(PRELUDE[kind](url, http, stop, counts, ready))
+        await asyncio.wait_for(ready.wait(), 300)
     lines0, tb0 = log_lines(log)
     _, cpu0 = usage(pids)
     t0 = time.perf_counter()
-    task = asyncio.create_task(ABUSERS[kind](url, http, stop, counts)) if kind else None
+    if kind and task is None:
+        task = asyncio.create_task(ABUSERS[kind](url, http, stop, counts))
     probe.stats = stats
     next_t = t0 + random.uniform(0, interval)
     while next_t < t0 + duration:

@@ -12,12 +12,17 @@ import pytest
 from bokeh.server.connection import ServerConnection
 
 from app.page.limits import (
+    BAD_SIGNATURE,
     CLOSED_SEND,
     PROTOCOL_LOGGER,
+    WS_LOGGER,
     Burst,
+    bad_signature,
     closed_send,
     detached_session,
     quiet_closed_connections,
+    raised_in,
+    refused_token,
 )
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks" / "app"))
@@ -63,6 +68,28 @@ def test_matchers_pick_only_the_closed_connection_records():
     assert not detached_session(record())
     assert closed_send(record(CLOSED_SEND))
     assert not closed_send(record("Failed sending %s", args=("x",)))
+
+
+def opening() -> None:
+    from bokeh.protocol.exceptions import ProtocolError
+
+    raise ProtocolError("Invalid token signature")
+
+
+def test_refused_tokens_are_told_by_where_they_were_raised():
+    try:
+        opening()
+    except Exception:
+        here = sys.exc_info()
+    assert raised_in(record(exc_info=here), type(here[1]), "opening", "tests/app/test_limits.py")
+    assert not raised_in(record(exc_info=here), AssertionError, "opening",
+                         "tests/app/test_limits.py")
+    assert not raised_in(record(exc_info=here), type(here[1]), "open",
+                         "tests/app/test_limits.py")
+    # Bokeh's own is raised by its websocket handler's `open`, not here
+    assert not refused_token(record(exc_info=here))
+    assert bad_signature(record(BAD_SIGNATURE, args=("abc",), name=WS_LOGGER))
+    assert not bad_signature(record("Token for session had a valid signature"))
 
 
 def test_burst_logs_one_line_per_window_and_counts_the_rest():
