@@ -11,7 +11,7 @@ descriptions, and the live region's announcement of a change of phase.
 from __future__ import annotations
 
 import pytest
-from explorer_browser import column, open_explorer, wait_until
+from explorer_browser import column, open_explorer, steady, wait_until
 
 from app.contact.data import readout_rows
 from app.contact.readout import CAPTION
@@ -690,15 +690,23 @@ JS_PLAY_LABEL = """() => [...Bokeh.documents[0].all_models].find(
 
 def test_play_key_plays_and_pauses(browser, url) -> None:
     """Alt + K, wherever the keyboard is but in a text box, plays; again, pauses: the
-    button says so and the time moves."""
+    button says so and the time moves.  The plots' descriptions wait while playing and
+    describe the frame the pause lands on."""
     page, _ = open_explorer(browser, url)
     assert page.evaluate(JS_PLAY_LABEL) == "▶ Play"
+    state = ExplorerState()
+    before = figures(page)
     tau = page.evaluate("() => __slider('tau').value")
     page.get_by_role("button", name="Step").focus()
     page.keyboard.press(f"Alt+{PLAY_KEY.upper()}")
     page.wait_for_function(f"() => ({JS_PLAY_LABEL})() === '‖ Pause'", timeout=20_000)
     page.wait_for_function("(t) => __slider('tau').value !== t", arg=tau, timeout=20_000)
+    assert figures(page) == before  # (written at the pause)
     page.mouse.click(1, 1)  # the keyboard on the page itself
     page.keyboard.press(f"Alt+{PLAY_KEY.upper()}")
     page.wait_for_function(f"() => ({JS_PLAY_LABEL})() === '▶ Play'", timeout=20_000)
+    paused = steady(lambda: page.evaluate("() => __slider('tau').value"))
+    expected = descriptions(state.contact(), paused, 0)
+    wait_until(lambda: figures(page) == {PLOT_NAMES[k]: t for k, t in expected.items()},
+               what="the descriptions of the frame the pause landed on")
     page.close()
