@@ -484,7 +484,9 @@ NAN_RATE = 20.0
 NAN_VALUES = (float("nan"), float("inf"), float("-inf"),
               {"type": "number", "value": "nan"}, {"type": "number", "value": "+inf"})
 
-REFUSAL_TEXT = "Too many pages were opened"
+#: The title of the page a client past its page builds gets (`app.page.guard`): a
+#: server page's HTML holds its title, the document's text comes by the websocket.
+REFUSAL_TITLE = "<title>Zharii contact explorer</title>"
 METHODS_TITLE = "Methods: numerical"
 LIVE_LABEL = "Recompute live on every change"
 
@@ -541,7 +543,7 @@ async def abuse_page_loop(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
     while not stop.is_set():
         r = await http.fetch(url, request_timeout=60, raise_error=False)
         body = r.body.decode(errors="replace") if r.body else ""
-        key = ("refused" if REFUSAL_TEXT in body else "built" if r.code == 200
+        key = ("refused" if REFUSAL_TITLE in body else "built" if r.code == 200
                else f"HTTP {r.code}")
         if ready is not None and not ready.is_set():
             if key != "refused":
@@ -699,7 +701,10 @@ async def abuse_window(probe: Session, kind: str | None, url: str, http: AsyncHT
     task = None
     if kind in PRELUDE:  # the abuser runs unrecorded until it says it is ready
         task = asyncio.create_task(PRELUDE[kind](url, http, stop, counts, ready))
-        await asyncio.wait_for(ready.wait(), 300)
+        try:
+            await asyncio.wait_for(ready.wait(), 120)
+        except TimeoutError:
+            counts["not ready after 120 s"] = 1
     lines0, tb0 = log_lines(log)
     _, cpu0 = usage(pids)
     t0 = time.perf_counter()
