@@ -37,7 +37,7 @@ MESSAGE_CHARS = 400  # a message longer than this (it quotes a long link) is cut
 URL_DELAY_S = 0.4  # the URL follows the parameters this long after the last change (s)
 
 #: What the Motor card's "follow" box puts in the contact's state, and restores.
-FOLLOWED = ("physical", "psi", "tau0", "mu", "nu")
+FOLLOWED = ("physical", "drive", "psi", "tau0", "mu", "nu")
 
 #: The plots' accessible names (their cards' titles), by the key of their description.
 PLOT_NAMES = {"spheres": "The two spheres (Fig. 2)", "traction": "Traction profile (Fig. 6)",
@@ -236,7 +236,7 @@ class Explorer(param.Parameterized):
             self.show_messages([*self.messages, f"The plots cannot follow the rotor's "
                                 f"contact at x₀: {err}"])
             return
-        self._set_contact(dict(physical=False, psi=psi, tau0=tau0, mu=mu, nu=nu))
+        self._set_contact(dict(physical=False, drive="psi", psi=psi, tau0=tau0, mu=mu, nu=nu))
 
     def _set_contact(self, values: dict) -> None:
         self._following = True

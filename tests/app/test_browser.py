@@ -354,7 +354,7 @@ def test_legend_click_hides_the_curve(browser, url) -> None:
     still hide the real curve, and a second click show it again."""
     page, console = open_explorer(browser, url)
     assert column(page, "motion", "u2") is None  # its tab is closed: not in the page
-    page.get_by_text("Centre motion (Fig. 9)", exact=True).click()
+    page.get_by_role("tab", name="Centre motion (Fig. 9)").click()
     page.wait_for_function("() => (__col('motion', 'u2') || []).length > 0", timeout=20_000)
     visible = "() => Bokeh.documents[0].get_model_by_name('motion_u2').visible"
     assert page.evaluate(visible) is True
@@ -500,7 +500,7 @@ def test_the_papers_figures_in_full_are_drawn(browser, url) -> None:
     figure_views = """(titles) => __views((v) => v.model != null && v.model.type === "Figure"
         && titles.includes(v.model.title.text)).map((v) => {
           const r = v.el.getBoundingClientRect(); return [r.width, r.height]; })"""
-    page.get_by_text("Centre motion (Fig. 9)", exact=True).click()
+    page.get_by_role("tab", name="Centre motion (Fig. 9)").click()
     page.wait_for_function("() => (__col('motion', 'v2') || []).length > 0", timeout=20_000)
     panels = ["Contact-centre velocity (Fig. 9a)", "Contact-centre displacement (Fig. 9b)"]
     page.wait_for_function(f"() => ({figure_views})({panels!r}).length === 2", timeout=10_000)
@@ -509,7 +509,7 @@ def test_the_papers_figures_in_full_are_drawn(browser, url) -> None:
     c = Contact(math.sqrt(2) + 1, math.pi / 6)
     i = int(np.searchsorted(tau, c.tau1))
     assert tau[i] - tau[i - 1] < 1e-5 and v2[i - 1] < -0.3 < 0.1 < v2[i]  # the jump
-    page.get_by_text("Radii (Fig. 4b)", exact=True).click()
+    page.get_by_role("tab", name="Radii (Fig. 4b)").click()
     page.wait_for_function("() => (__col('radii_drive', 'uz') || []).length > 0",
                            timeout=20_000)
     assert column(page, "radii_disks", "label") == list("abcdef")

@@ -229,9 +229,12 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
         "traction", "disc", "force", "force_marker", "force_landmarks",
         "spheres_drive", "spheres_lower", "spheres_patch", "spheres_forces")}
     slider = doc.select_one({"tags": "psi-slider"}).data  # a LabelledSlider's values
+    # (the drive angle's slider follows psi: theta = arctan(psi tan theta0))
+    theta = doc.select_one({"tags": "theta-slider"}).data
     assert changed == data | {("Label", "traction_caption", "text"), ("HTML", None, "text"),
                               ("Label", "spheres_rest_note", "text"),
                               (type(slider).__name__, slider.name, "value"),
+                              (type(theta).__name__, theta.name, "value"),
                               ("TextInput", None, "value"), ("TextInput", None, "value_input")}
     assert ex.state.psi == ex.contact.controls.psi_slider.value == 2.51
     events.clear()
