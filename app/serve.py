@@ -261,17 +261,20 @@ def main(argv: list[str] | None = None) -> None:
     # lazy imports and caches) is done before a visitor waits for it
     app.page.explorer.Explorer().view().get_root(Document())
     log.info("closed form and a page ready in %.1f s", time.perf_counter() - started)
+    def load_methods() -> None:  # from the cache the other process fills: ~0.5 s
+        methods.stdout.read()  # (EOF when it ends, in every server process)
+        methods.poll()  # (reaped, where this process started it)
+        try:
+            warm_methods()
+        except Exception as err:  # the cards then compile on first use; pages are served
+            log.warning("the Methods and Motor cards' kernels did not load: %s: %s",
+                        type(err).__name__, err)
+
     try:  # with a warm cache they are loaded in a second or two: before the address
         methods.wait(timeout=METHODS_WAIT_S)
-        warm_methods()  # (from the cache: ~0.5 s holding the GIL, before any page)
+        load_methods()  # (from the cache: ~0.5 s holding the GIL, before any page)
     except subprocess.TimeoutExpired:
         log.info("the Methods and Motor cards' kernels compile in the background")
-
-        def load_methods() -> None:  # from the cache the other process fills: ~0.5 s
-            methods.stdout.read()  # (EOF when it ends, in every server process)
-            methods.poll()  # (reaped, where this process started it)
-            warm_methods()
-
         threading.Thread(target=load_methods, name="warm-methods", daemon=True).start()
     gc.freeze()  # the modules' objects: out of every later garbage collection's walk
     server = get_server({"main": str(MAIN)}, start=False, **server_options(args))
