@@ -255,6 +255,7 @@ def main(argv: list[str] | None = None) -> None:
     warm()
     from bokeh.document import Document
 
+    import app.methods.data
     import app.page.explorer  # (what every session's script imports)
 
     # one page built and dropped: what a first page would do once (Panel's and Bokeh's
@@ -266,6 +267,7 @@ def main(argv: list[str] | None = None) -> None:
         methods.poll()  # (reaped, where this process started it)
         try:
             warm_methods()
+            app.methods.data.prepare()
         except Exception as err:  # the cards then compile on first use; pages are served
             log.warning("the Methods and Motor cards' kernels did not load: %s: %s",
                         type(err).__name__, err)

@@ -46,6 +46,19 @@ def resolution(name: str, factor: float) -> int:
     return min(n, MAX_RESOLUTION.get(name, n))
 
 
+def prepare() -> None:
+    """Compute once, at the server's start, what a method would set up on its first run
+    at any offered resolution: the Gauss-Legendre nodes (cached per n by
+    `core.numerics.quadrature`; 4,096 of them take ~0.35 s, which a visitor's first run
+    at 16 x would otherwise wait for)."""
+    if numerics is None:
+        return
+    from core.numerics.quadrature import gauss_legendre_nodes
+
+    for factor in RESOLUTION_FACTORS.values():
+        gauss_legendre_nodes(0.0, 1.0, resolution("gauss_legendre", factor))
+
+
 @dataclass(frozen=True)
 class Run:
     """The methods solved for one contact: their results (`core.numerics.solve`'s, in
