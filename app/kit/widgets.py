@@ -25,6 +25,7 @@ import html
 import logging
 import math
 from collections.abc import Callable
+from functools import partial
 from typing import ClassVar
 
 import panel as pn
@@ -33,6 +34,7 @@ from bokeh.document import Document
 from panel.io import hold, unlocked
 from panel.io.state import set_curdoc
 
+from app.kit.jobs import later
 from app.kit.style import HIDE_TAB_HEADERS_CSS, VISUALLY_HIDDEN_CSS
 
 log = logging.getLogger(__name__)
@@ -78,12 +80,8 @@ def finite(value: object) -> bool:
 def show_later(widget: param.Parameterized, value: object) -> None:
     """Set `widget.value` once the browser's entry into it has been handled (Panel sends
     no change of a property back to the browser while handling the browser's change of
-    it); at once without a server session (a notebook)."""
-    doc = pn.state.curdoc
-    if doc is None or doc.session_context is None:
-        widget.value = value
-    else:
-        doc.add_next_tick_callback(lambda: setattr(widget, "value", value))
+    it: `app.kit.jobs.later`)."""
+    later(pn.state.curdoc, partial(setattr, widget, "value", value))
 
 
 def typed_value(box: pn.widgets.TextInput, text: str, shown: str,
@@ -478,12 +476,7 @@ class TabList(pn.reactive.ReactiveHTML):
                 tabs.active = int(event.new)
             else:
                 log.debug("refused tab %.80r from the browser", event.new)
-                doc = pn.state.curdoc
-                if doc is None or doc.session_context is None:
-                    tablist.value = tabs.active
-                else:  # (once the browser's change has been handled)
-                    doc.add_next_tick_callback(
-                        lambda: setattr(tablist, "value", tabs.active))
+                show_later(tablist, tabs.active)
 
         tablist.param.watch(to_tabs, "value")
         tabs.param.watch(lambda e: setattr(tablist, "value", e.new), "active")
