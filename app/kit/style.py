@@ -24,6 +24,6 @@ VISUALLY_HIDDEN_CSS = (":host { position: absolute !important; width: 1px !impor
                        " clip-path: inset(50%) !important; white-space: nowrap;"
                        " margin: 0 !important; }")
 
-#: BokehJS's tab titles hidden: the page draws its own tab list (`app.kit.widgets.TabList`,
+#: BokehJS's tab titles hidden: the page draws its own tab list (`app.kit.a11y.TabList`,
 #: keyboard operable) above the Tabs' content.
 HIDE_TAB_HEADERS_CSS = ".bk-header { display: none; }"

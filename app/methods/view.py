@@ -20,10 +20,10 @@ import panel as pn
 from bokeh.models import ColumnDataSource
 from panel.io import hold
 
+import app.methods.data as data
 from app.kit.figures import CURVE_POINTS, fit_range, new_figure, style_figure
 from app.kit.jobs import RUNNER
 from app.kit.widgets import LabelledCheckbox, text_html
-from app.methods import data
 from app.methods.results import RESULTS, download_text, read_rows
 from app.methods.speed_chart import STYLE, SpeedAccuracyData, speed_accuracy_chart
 from app.methods.speed_chart import speed_accuracy_data as speed_views

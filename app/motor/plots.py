@@ -7,10 +7,10 @@ import math
 
 import numpy as np
 
+import app.motor.data as data
 from app.kit.figures import fit_range
 from app.kit.widgets import text_html
 from app.kit.wire import inline
-from app.motor import data
 from app.motor.figures import BEST_COLOR, NO_LOAD_COLOR, MotorFigures
 from core.motor import Motor
 

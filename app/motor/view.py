@@ -27,12 +27,14 @@ import param
 from bokeh.events import Tap
 from panel.io import hold
 
+import app.motor.data as data
+import app.motor.downloads as downloads
+import app.motor.plots as plots
 from app.contact import export
 from app.kit.figures import fit_range
 from app.kit.jobs import RUNNER
 from app.kit.widgets import ERROR_STYLE, ExactSlider, LabelledCheckbox, show_later, text_html
 from app.kit.wire import inline
-from app.motor import data, downloads, plots
 from app.motor.fields import (
     FIELDS,
     LOAD_FIELDS,

@@ -16,88 +16,28 @@ import textwrap
 import time
 from functools import partial
 
-import numpy as np
 import panel as pn
 import param
 from panel.io.location import Location
 from panel.io.resources import get_dist_path
 
 from app.contact.state import ExplorerState
-from app.contact.view import CONTACT_INPUTS, TAB_TITLES, ContactView
+from app.contact.view import CONTACT_INPUTS, ContactView
 from app.dem.view import DemCard
-from app.kit.style import MESSAGE_STYLE, VISUALLY_HIDDEN_CSS
-from app.kit.widgets import LabelledCheckbox, LiveText
+from app.kit.style import MESSAGE_STYLE
+from app.kit.widgets import LabelledCheckbox
 from app.methods import MethodsScene
 from app.motor import URL_PARAMS as MOTOR_URL_PARAMS
 from app.motor import MotorScene
 from app.page import layout, presentation, url
-from core import PHASE_NAMES, Contact, Phase
+from app.page.describe import Describer
+from core import Contact
 
 MESSAGE_CHARS = 400  # a message longer than this (it quotes a long link) is cut
 URL_DELAY_S = 0.4  # the URL follows the parameters this long after the last change (s)
 
 #: What the Motor card's "follow" box puts in the contact's state, and restores.
 FOLLOWED = ("physical", "drive", "psi", "tau0", "mu", "nu")
-
-#: The plots' accessible names (their cards' titles), by the key of their description.
-PLOT_NAMES = {"spheres": "The two spheres (Fig. 2)", "traction": "Traction profile (Fig. 6)",
-              "disc": "Contact disc", "curves": "Curves over the contact"}
-
-
-def phase_start(c: Contact, tau: float) -> float:
-    """When the phase of `c` at time `tau` (rad) began: the first time of the run of that
-    phase that holds `tau` (to 1e-9 rad; tau0 for the phase the contact starts in)."""
-    phase = int(c.phase(tau))
-    grid = np.linspace(c.tau0, tau, 200)
-    other = np.nonzero(c.phase(grid) != phase)[0]
-    if len(other) == 0:
-        return c.tau0
-    lo, hi = float(grid[other[-1]]), float(grid[other[-1] + 1])
-    while hi - lo > 1e-9:  # (phase(lo) is another phase, phase(hi) this one)
-        mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if int(c.phase(mid)) == phase else (mid, hi)
-    return hi
-
-
-def announcement(c: Contact, tau: float) -> str:
-    """What the live region says of the phase at time `tau`: 'Partial stick from
-    τ = 1.571 rad'."""
-    return f"{PHASE_NAMES[int(c.phase(tau))].capitalize()} from τ = {phase_start(c, tau):.3f} rad"
-
-
-def descriptions(c: Contact, tau: float, tab: int) -> dict[str, str]:
-    """A short text of what each plot (`PLOT_NAMES`) shows at time `tau` (rad), the
-    curve tab `tab` open: the numbers are core's."""
-    phase = PHASE_NAMES[int(c.phase(tau))]
-    T, P = float(c.tangential_force(tau)), float(c.normal_force(tau))
-    a, b = float(c.contact_radius(tau)), float(c.stick_radius(tau))
-    at = f"at τ = {tau:.3f} rad"
-    span = f"over the contact, τ from {c.tau0:.3f} to {c.tau_end:.3f} rad"
-    curves = (
-        f"T(τ): the tangential force T/T0 {span}; {at}, T = {T:+.3f} T0",
-        f"Impulse: the impulse ratio over ψ; at this contact's ψ = {c.psi:.4g}, "
-        f"{c.impulse_ratio:.3f}",
-        f"Radii: the contact radius a and the stick radius b {span}; {at}, "
-        f"a = {a:.3f} a*, b = {b:.3f} a*",
-        f"Centre motion: the displacement and velocity of the driven sphere's centre and "
-        f"of the drive {span}",
-    )
-    return {
-        "spheres": f"The two spheres {at}: {phase}; forces on the upper sphere "
-                   f"P = {P:.3f} P0, T = {T:+.3f} T0",
-        "traction": f"Traction profile {at}: {phase}, stick radius {b:.2f} a*, "
-                    f"T = {T:+.3f} T0",
-        "disc": f"Contact disc {at}: {phase}, contact radius {a:.3f} a*, "
-                f"stick radius {b:.3f} a*",
-        "curves": f"{TAB_TITLES[tab]}. {curves[tab]}",
-    }
-
-
-def description_html(name: str, text: str) -> str:
-    """A figure named `name`, described by `text`, for a screen reader (the page hides
-    it from sight: `app.kit.style.VISUALLY_HIDDEN_CSS`)."""
-    return (f'<div role="figure" aria-label="{html.escape(name)}" aria-describedby="d">'
-            f'<p id="d">{html.escape(text)}</p></div>')
 
 
 class Explorer(param.Parameterized):
@@ -140,41 +80,8 @@ class Explorer(param.Parameterized):
         self.write_url()
         if self._motor_query:  # a link to the motor opens it
             self.motor_card.collapsed = False
-        #: each plot's name and description, following the state (`describe`)
-        self.descriptions = {
-            key: pn.pane.HTML("", stylesheets=[VISUALLY_HIDDEN_CSS], disable_math=True,
-                              margin=0, name=f"{key}_description")
-            for key in PLOT_NAMES}
-        #: the polite live region announcing a change of phase
-        self.announcer = LiveText(name="phase_announcement")
-        self._announced = int(self.contact.shown.phase(self.state.tau))
-        self.describe()
-        self.contact.param.watch(lambda *_: self.describe(), "shown")
-        self.contact.tabs.param.watch(lambda *_: self.describe(), "active")
-        self.state.param.watch(lambda *_: self.describe(), ["tau", "playing"])
-
-    # ------------------------------------------------------- screen readers
-
-    def describe(self) -> None:
-        """Write each plot's description, and announce a new phase, for the contact and
-        time shown.  While playing nothing is written (the browser plays the frames; the
-        server learns the time at the pause): the pause writes them once."""
-        if self.state.playing:
-            return
-        c = self.contact.shown
-        tau = min(max(self.state.tau, c.tau0), c.tau_end)  # (before the state's clamp)
-        tab = self.contact.tabs.active
-        if tab not in range(len(TAB_TITLES)):
-            return
-        for key, text in descriptions(c, tau, tab).items():
-            pane = self.descriptions[key]
-            new = description_html(PLOT_NAMES[key], text)
-            if pane.object != new:
-                pane.object = new
-        phase = int(c.phase(tau))
-        if phase != self._announced and phase != Phase.NO_CONTACT:
-            self._announced = phase
-            self.announcer.text = announcement(c, tau)
+        #: each plot's name and description, and the live region (`app.page.describe`)
+        self.describer = Describer(self.contact, self.state)
 
     # ---------------------------------------------------------------- messages
 
@@ -283,10 +190,12 @@ class Explorer(param.Parameterized):
         view when the explorer was opened with view=present."""
         if self.view_name == presentation.VIEW:
             return presentation.presentation(self.contact, self.message,
-                                             self.descriptions, self.announcer)
+                                             self.describer.descriptions,
+                                             self.describer.announcer)
         return layout.page(self.contact, self.message,
                            [self.contact.fig6_card, self.methods.view(), self.motor_card,
-                            self.dem], self.descriptions, self.announcer)
+                            self.dem], self.describer.descriptions,
+                           self.describer.announcer)
 
     def servable(self, page: pn.Column | None = None) -> pn.Column:
         """Mark the page servable in the session being built (`app.page.guard`).

@@ -4,9 +4,9 @@ Sizes and type are for a projector (17 px base, never below 16 px); on a phone t
 stack.  Every control shows a ring when the keyboard is on it, and the sidebar's
 "Keyboard" card lists the keys the page answers to.  For a screen reader the page has
 landmarks (banner, the sidebar a complementary region, main), each plot a name and a
-description that follows the state (`app.page.explorer.descriptions`), a polite live
+description that follows the state (`app.page.describe.descriptions`), a polite live
 region announcing a change of phase, and the curve tabs are a keyboard-operable tab
-list (`app.kit.widgets.TabList`).
+list (`app.kit.a11y.TabList`).
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ import panel as pn
 
 from app.contact.phases import STYLES
 from app.contact.view import TAB_TITLES, ContactView
-from app.kit.widgets import KeyShortcut, Landmark, TabList
+from app.kit.a11y import KeyShortcut, Landmark, TabList
 from core import Phase
 
 #: Colour key of the contact disc (the figure has no legend, see DiscScene).
@@ -101,11 +101,11 @@ class Keys:
 
 
 #: The key that plays or pauses, anywhere but in a text box, with Alt
-#: (`app.kit.widgets.KeyShortcut`).
+#: (`app.kit.a11y.KeyShortcut`).
 PLAY_KEY = "k"
 
 #: The keys the page answers to (the sliders are `app.kit.widgets.LabelledSlider`s, range
-#: inputs with Page Up / Down added; the curve tabs an `app.kit.widgets.TabList`; text
+#: inputs with Page Up / Down added; the curve tabs an `app.kit.a11y.TabList`; text
 #: boxes, menus, check boxes and buttons are the browser's own).
 KEYS = (
     Keys("Anywhere", ("Tab", "Shift+Tab"), "next / previous control", opposite=True),
@@ -202,7 +202,7 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
     per page load); on a narrow screen the sidebar stacks above the scenes.  `contact`
     gives the scenes and controls, `message` is the page's banner, `cards` the cards
     below the scenes (Fig. 6 in full, Methods, Motor); `descriptions` the plots' names
-    and descriptions for a screen reader (by `app.page.explorer.PLOT_NAMES`' keys),
+    and descriptions for a screen reader (by `app.page.describe.PLOT_NAMES`' keys),
     `announcer` the live region that announces a change of phase."""
     ui = contact.controls
     descriptions = descriptions or {}

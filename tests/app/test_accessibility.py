@@ -17,7 +17,7 @@ from app.contact.data import readout_rows
 from app.contact.readout import CAPTION
 from app.contact.state import ExplorerState
 from app.contact.view import TAB_TITLES
-from app.page.explorer import PLOT_NAMES, announcement, descriptions
+from app.page.describe import PLOT_NAMES, announcement, descriptions
 from app.page.layout import FOCUS_COLOR, KEY_NAMES, KEYS, PLAY_KEY
 from core import Contact
 
@@ -132,7 +132,7 @@ def test_axe_finds_nothing_serious_or_critical(axe_findings) -> None:
 
 def test_axe_finds_no_landmark_problem(axe_findings) -> None:
     """A `main` landmark, and no content outside the landmarks (axe's rules 'region' and
-    'landmark-*'; Panel's layouts carry no role: `app.kit.widgets.Landmark`)."""
+    'landmark-*'; Panel's layouts carry no role: `app.kit.a11y.Landmark`)."""
     assert [(f["id"], len(f["nodes"])) for f in axe_findings
             if f["id"] == "region" or f["id"].startswith("landmark")] == []
 
@@ -319,8 +319,8 @@ def test_sliders_are_named_after_their_labels(names) -> None:
     """Each slider (a range input, `app.kit.widgets.LabelledSlider`) is named by its label: the
     same words as its number box's."""
     assert sorted(names["slider"]) == sorted([
-        "ψ = tan θ / tan θ₀", "τ₀ (rad): contact starts", "μ friction", "ν Poisson ratio",
-        "τ = ωt (rad): time", "Speed"])
+        "ψ = tan θ / tan θ₀", "θ (°): drive angle, tan θ = u₀/H", "τ₀ (rad): contact starts",
+        "μ friction", "ν Poisson ratio", "τ = ωt (rad): time", "Speed"])
 
 
 # ---------------------------------------------------------------- Tab stops
@@ -587,7 +587,7 @@ def test_live_region_announces_a_change_of_phase(browser, url) -> None:
 # ------------------------------------------------------------- curve tabs
 
 #: JavaScript: the curve tabs' Bokeh model (Panel's Tabs, its titles `TAB_TITLES`) and
-#: the tab list's (`app.kit.widgets.TabList`).
+#: the tab list's (`app.kit.a11y.TabList`).
 JS_TABS = """() => {
   const models = [...Bokeh.documents[0].all_models];
   window.__tabs = models.find((m) => m.type.endsWith(".Tabs") && m.tabs.length > 0

@@ -1,0 +1,224 @@
+"""Widgets for keyboard and screen-reader users (WAI-ARIA Authoring Practices).
+
+`TabList`: the tabs pattern over a Panel `Tabs` (roles, `aria-selected`, arrows,
+Home/End, Enter/Space, a visible focus ring); `KeyShortcut`: a documented page-level key
+that clicks a button; `LiveText`: a polite live region; `Landmark`: a layout carrying an
+ARIA landmark role.  Each is Panel's public `ReactiveHTML` (its scripts run under the
+page's Content-Security-Policy); values from the browser are checked before use.
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import ClassVar
+
+import panel as pn
+import param
+
+from app.kit.style import HIDE_TAB_HEADERS_CSS, VISUALLY_HIDDEN_CSS
+from app.kit.widgets import finite, show_later
+
+log = logging.getLogger(__name__)
+
+#: JavaScript of `TabList`: one button (role "tab") per title, built once; the selected
+#: one `aria-selected` and the only one in the tab order (a roving tab index); the panel
+#: named by the selected title.
+_TABS_SHOW = """
+if (list.children.length !== data.titles.length) {
+  list.replaceChildren(...data.titles.map((title, i) => {
+    const tab = document.createElement("button");
+    tab.type = "button";
+    tab.setAttribute("role", "tab");
+    tab.dataset.index = i;
+    tab.textContent = title;
+    return tab;
+  }));
+}
+list.setAttribute("aria-label", data.label);
+[...list.children].forEach((tab, i) => {
+  const on = i === data.value;
+  tab.setAttribute("aria-selected", on ? "true" : "false");
+  tab.tabIndex = on ? 0 : -1;
+});
+panel.setAttribute("aria-label", data.titles[data.value] || data.label);
+"""
+
+#: JavaScript of `TabList`: the arrows move the keyboard to the next / previous tab
+#: (round), Home / End to the first / last; Enter and Space press the tab (a button's
+#: own keys), which selects it (`_TABS_CLICK`).
+_TABS_KEYDOWN = """
+const tabs = [...list.children];
+const i = tabs.indexOf(event.target);
+if (i < 0) { return; }
+const n = tabs.length;
+const to = {ArrowRight: (i + 1) % n, ArrowLeft: (i - 1 + n) % n, Home: 0, End: n - 1};
+if (event.key in to) {
+  event.preventDefault();
+  tabs[to[event.key]].focus();
+}
+"""
+
+_TABS_CLICK = """
+const tab = event.target.closest("[role=tab]");
+if (tab != null) { data.value = Number(tab.dataset.index); }
+"""
+
+
+class TabList(pn.reactive.ReactiveHTML):
+    """Tabs operable by keyboard (WAI-ARIA Authoring Practices' tabs pattern, manual
+    activation): a `tablist` of `tab` buttons, `titles`, over a `tabpanel` holding
+    `panel`; `value` is the selected tab's index.
+
+    BokehJS's Tabs draws its titles as focusable <div>s that answer to the mouse only,
+    without roles.  This list is buttons with the roles and `aria-selected`: the arrow
+    keys move along it (Home / End: its ends), Enter or Space select the tab the
+    keyboard is on, and only the selected tab is a Tab stop.  Built with Panel's public
+    `ReactiveHTML`, as `LabelledSlider` is (the page's Content-Security-Policy).
+    `for_tabs` puts one over a Panel `Tabs`, whose own titles it hides.
+    """
+
+    value = param.Number(default=0)
+    titles = param.List(default=[], item_type=str)
+    label = param.String(default="")
+    panel = param.Parameter()
+
+    _template = (
+        '<div id="list" role="tablist" onkeydown="${script(\'keydown\')}" '
+        'onclick="${script(\'click\')}"></div>'
+        '<div id="panel" role="tabpanel">${panel}</div>')
+
+    _scripts: ClassVar[dict[str, str]] = {
+        "render": _TABS_SHOW,
+        **dict.fromkeys(("value", "titles", "label"), _TABS_SHOW),
+        "keydown": _TABS_KEYDOWN,
+        "click": _TABS_CLICK,
+    }
+
+    #: Tabs drawn as tabs: the selected one white, with a coloured top edge and bold
+    #: title, joined to the panel; the titles wrap on a narrow screen; a 3 px ring.
+    CSS = """
+[role=tablist] { display: flex; flex-wrap: wrap; gap: 4px; padding: 4px 4px 0;
+                 border-bottom: 1px solid #8a8a8a; }
+[role=tab] { font: inherit; color: #212529; background: #f1f3f5; cursor: pointer;
+             border: 1px solid #8a8a8a; border-bottom: none; border-top: 3px solid #8a8a8a;
+             border-radius: 4px 4px 0 0; padding: 0.25em 0.8em; min-height: 24px;
+             margin-bottom: -1px; }
+[role=tab]:hover { background: #e2e6ea; }
+[role=tab][aria-selected=true] { background: white; font-weight: bold;
+                                 border-top-color: #0072B2; }
+[role=tab]:focus-visible { outline: 3px solid #1A5FB4; outline-offset: 2px; }
+"""
+
+    def __init__(self, **params) -> None:
+        params["stylesheets"] = [self.CSS, *params.get("stylesheets", [])]
+        super().__init__(**params)
+
+    def valid(self, value: object) -> bool:
+        """Whether `value` is the index of one of the tabs."""
+        return finite(value) and value == int(value) and 0 <= value < len(self.titles)
+
+    @classmethod
+    def for_tabs(cls, tabs: pn.Tabs, titles: list[str], label: str,
+                 **params) -> TabList:
+        """A tab list of `titles` over Panel's `tabs` (whose titles are hidden: the
+        list shows them), its `value` and `tabs.active` kept equal whichever changes.
+
+        An index that names no tab (from a script: no tab sends it) changes nothing:
+        the list shows the open tab again."""
+        tabs.stylesheets = [*tabs.stylesheets, HIDE_TAB_HEADERS_CSS]
+        tablist = cls(titles=list(titles), label=label, value=tabs.active, panel=tabs,
+                      **params)
+
+        def to_tabs(event: param.parameterized.Event) -> None:
+            if tablist.valid(event.new):
+                tabs.active = int(event.new)
+            else:
+                log.debug("refused tab %.80r from the browser", event.new)
+                show_later(tablist, tabs.active)
+
+        tablist.param.watch(to_tabs, "value")
+        tabs.param.watch(lambda e: setattr(tablist, "value", e.new), "active")
+        return tablist
+
+
+#: JavaScript of `KeyShortcut`: the page's keydown events (wherever the keyboard is;
+#: not in a text box) with `key` and Alt held count in `presses`.
+_SHORTCUT_LISTEN = """
+if (state.listening) { return; }
+state.listening = true;
+document.addEventListener("keydown", (event) => {
+  if (!event.altKey || event.ctrlKey || event.metaKey
+      || event.code !== "Key" + data.key.toUpperCase()) { return; }
+  const target = event.composedPath()[0];
+  if (target != null && (target.isContentEditable
+      || ["INPUT", "TEXTAREA", "SELECT"].includes(target.tagName)
+         && !["range", "checkbox", "radio", "button"].includes(target.type))) { return; }
+  event.preventDefault();
+  data.presses = data.presses + 1;
+});
+"""
+
+
+class KeyShortcut(pn.reactive.ReactiveHTML):
+    """A page-wide key: Alt + `key` (a letter; its physical key, so that macOS's Option
+    letters count) pressed anywhere but in a text box adds one to `presses`.
+
+    With a modifier, so that typing or a screen reader's single-letter keys never
+    trigger it (WCAG 2.1.4).  Draws nothing."""
+
+    key = param.String(default="k")
+    presses = param.Integer(default=0)
+
+    _template = '<div id="shortcut" hidden></div>'
+    _scripts: ClassVar[dict[str, str]] = {"render": _SHORTCUT_LISTEN}
+
+    def __init__(self, **params) -> None:
+        params.setdefault("margin", 0)
+        params.setdefault("width", 0)
+        params.setdefault("height", 0)
+        super().__init__(**params)
+
+
+class LiveText(pn.reactive.ReactiveHTML):
+    """Text a screen reader announces when it changes, politely (an `aria-live="polite"`
+    status region, kept in the page while its `text`, shown as text, changes); out of
+    sight."""
+
+    text = param.String(default="")
+
+    _template = '<div id="region" role="status" aria-live="polite" aria-atomic="true"></div>'
+    _scripts: ClassVar[dict[str, str]] = dict.fromkeys(
+        ("render", "text"), "region.textContent = data.text;")  # (text, never markup)
+
+    def __init__(self, **params) -> None:
+        params["stylesheets"] = [VISUALLY_HIDDEN_CSS, *params.get("stylesheets", [])]
+        params.setdefault("margin", 0)
+        super().__init__(**params)
+
+
+#: JavaScript of `Landmark`: the region's role and name.
+_LANDMARK_SHOW = """
+region.setAttribute("role", data.role);
+if (data.label) { region.setAttribute("aria-label", data.label); }
+else { region.removeAttribute("aria-label"); }
+"""
+
+
+class Landmark(pn.reactive.ReactiveHTML):
+    """`object` inside an ARIA landmark of `role` ('main', 'banner', 'complementary',
+    'region', ...) named `label`.  Panel's layouts carry no role (no property of Panel
+    or Bokeh gives a layout one): a screen reader's list of regions comes from these."""
+
+    object = param.Parameter()
+    role = param.String(default="region")
+    label = param.String(default="")
+
+    _template = '<div id="region">${object}</div>'
+    _scripts: ClassVar[dict[str, str]] = {
+        "render": _LANDMARK_SHOW, "role": _LANDMARK_SHOW, "label": _LANDMARK_SHOW}
+
+    CSS = "#region { width: 100%; }"
+
+    def __init__(self, **params) -> None:
+        params["stylesheets"] = [self.CSS, *params.get("stylesheets", [])]
+        super().__init__(**params)
