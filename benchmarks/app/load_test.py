@@ -35,6 +35,17 @@ duration, every wait has a timeout, and the target must be a loopback address.
     # two replicas behind nginx (docker/replicas.py), everything started and stopped here:
     python benchmarks/app/load_test.py --replicas 2
 
+Abuse (``--abuse [KIND ...]``, issue 22): one probe session moving ψ every
+``--interval`` s; per kind a ``--window`` alone, then one beside a single abusive client
+of that kind (`ABUSE_KINDS`: a page-load loop, websockets with invented session ids,
+PULL-DOC spam, the Methods card at 16x with live recompute, NaN as ψ), interleaved in one
+run against one server (``--serve 1`` unless given).  Per kind: the probe's p50/p95 alone
+and beside, their p95 ratio against the 1.5x target, moves answered, the server's CPU and
+the lines it logged (its output goes to a file):
+
+    python benchmarks/app/load_test.py --abuse --window 30
+    python benchmarks/app/load_test.py --abuse pull-doc nan --window 20
+
 Results: a table on stdout, and ``--json FILE`` for the raw figures.
 """
 
