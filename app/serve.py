@@ -236,11 +236,13 @@ def main(argv: list[str] | None = None) -> None:
     """Serve the explorer at /main (and / redirecting there) until interrupted."""
     from panel.io.server import get_server
 
+    from app.page.limits import quiet_closed_connections
     from core.warm import warm, warm_methods
 
     args = parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(levelname)s %(message)s")
     log = logging.getLogger("app.serve")
+    quiet_closed_connections()  # (a closed client's queued messages: one line, no traceback)
     if "*" in args.allow_websocket_origin:
         log.warning("websocket origin '*': any web page may open sessions on this server")
     # the Methods and Motor cards' kernels: compiled into numba's disk cache by another
