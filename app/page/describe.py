@@ -10,8 +10,6 @@ pause writes them once.  The page puts them beside the plots (`app.page.layout`)
 from __future__ import annotations
 
 import html
-import time
-from functools import partial
 
 import numpy as np
 import panel as pn
@@ -21,9 +19,6 @@ from app.contact.view import TAB_TITLES, ContactView
 from app.kit.a11y import LiveText
 from app.kit.style import VISUALLY_HIDDEN_CSS
 from core import PHASE_NAMES, Contact, Phase
-
-#: How long the plots stand still before their descriptions are written (s).
-SETTLE_S = 0.3
 
 #: The plots' accessible names (their cards' titles), by the key of their description.
 PLOT_NAMES = {"spheres": "The two spheres (Fig. 2)", "traction": "Traction profile (Fig. 6)",
@@ -99,31 +94,10 @@ class Describer:
         #: the polite live region announcing a change of phase
         self.announcer = LiveText(name="phase_announcement")
         self._announced = int(contact.shown.phase(state.tau))
-        self._due, self._pending = 0.0, False
         self.describe()
-        contact.param.watch(lambda *_: self.describe_soon(), "shown")
-        contact.tabs.param.watch(lambda *_: self.describe_soon(), "active")
-        state.param.watch(lambda *_: self.describe_soon(), ["tau", "playing"])
-
-    def describe_soon(self) -> None:
-        """`describe`, SETTLE_S after the last change of a burst (a slider drag): the
-        texts are read when the plots stand still, and a move sends no text but the
-        plots' data.  Without a served page there is nothing to describe."""
-        doc = pn.state.curdoc
-        if doc is None or doc.session_context is None:
-            return
-        self._due = time.monotonic() + SETTLE_S
-        if not self._pending:
-            self._pending = True
-            doc.add_timeout_callback(partial(self._flush, doc), int(SETTLE_S * 1000))
-
-    def _flush(self, doc) -> None:
-        wait = self._due - time.monotonic()
-        if wait > 0.005:  # changed again meanwhile: wait for the end of the burst
-            doc.add_timeout_callback(partial(self._flush, doc), int(wait * 1000))
-            return
-        self._pending = False
-        self.describe()
+        contact.param.watch(lambda *_: self.describe(), "shown")
+        contact.tabs.param.watch(lambda *_: self.describe(), "active")
+        state.param.watch(lambda *_: self.describe(), ["tau", "playing"])
 
     def describe(self) -> None:
         """Write each plot's description, and announce a new phase, for the contact and
