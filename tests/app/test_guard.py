@@ -125,9 +125,7 @@ def test_a_value_no_browser_sends_is_refused_once(slider: str, value: float) -> 
     finally:
         sys.setrecursionlimit(limit)
     after = {k: getattr(ex.state, k) for k in before}
-    if math.isfinite(value) and slider not in ("speed",):
-        return  # a finite value may be one the box takes (it widens the slider)
-    assert after == before
+    assert after == before  # (+-1e300 is outside every one of these domains too)
 
 
 @pytest.mark.parametrize("link", ["?tau0=1.57079632679", "??psi=1",
