@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import html
 import io
-import textwrap
 
 import panel as pn
 import param
@@ -23,13 +22,10 @@ from panel.io import hold
 from app.dem import data
 from app.dem.state import DemState
 from app.kit.figures import fit_range, new_figure, style_figure
-from app.kit.widgets import ERROR_STYLE, bind, text_html
+from app.kit.widgets import ERROR_STYLE, bind, shortened, text_html
 from core.dem_check import CASES, lammps
 
 TITLE = "Check a DEM code: LAMMPS and yours against the exact solution"
-#: A message longer than this is cut (it may quote a long header row).
-MESSAGE_CHARS = 400
-
 INTRO = (
     "The paper's loading as a test of a discrete-element tangential contact model: the "
     "lower sphere driven along an oblique, oscillating path, the upper one held. The "
@@ -180,7 +176,7 @@ class DemCard(pn.viewable.Viewer):
     def _show_score(self) -> None:
         """The score table, or the reason there is none under the upload box."""
         s = self.state
-        text = textwrap.shorten(s.message, MESSAGE_CHARS, placeholder=" …")
+        text = shortened(s.message)
         with hold():
             self.message.param.update(object=text_html(text), visible=bool(text))
             if s.score is None:

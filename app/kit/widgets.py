@@ -24,6 +24,7 @@ import asyncio
 import html
 import logging
 import math
+import textwrap
 from collections.abc import Callable
 from functools import partial
 from typing import ClassVar
@@ -97,6 +98,15 @@ def typed_value(box: pn.widgets.TextInput, text: str, shown: str,
     except ValueError:
         show_later(box, shown)  # back to the last good value
         raise
+
+
+#: A message longer than this (it quotes a long link or a file's line) is cut.
+MESSAGE_CHARS = 400
+
+
+def shortened(message: str) -> str:
+    """`message` cut to MESSAGE_CHARS (blanks folded), for a message box."""
+    return textwrap.shorten(message, MESSAGE_CHARS, placeholder=" …")
 
 
 def text_html(text: str) -> str:

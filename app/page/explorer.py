@@ -12,7 +12,6 @@ session's end.  The layout takes the features' views (`app.page.layout`,
 from __future__ import annotations
 
 import html
-import textwrap
 import time
 from functools import partial
 
@@ -25,7 +24,7 @@ from app.contact.state import ExplorerState
 from app.contact.view import CONTACT_INPUTS, ContactView
 from app.dem.view import DemCard
 from app.kit.style import MESSAGE_STYLE
-from app.kit.widgets import LabelledCheckbox
+from app.kit.widgets import LabelledCheckbox, shortened
 from app.methods import MethodsScene
 from app.motor import URL_PARAMS as MOTOR_URL_PARAMS
 from app.motor import MotorScene
@@ -33,7 +32,6 @@ from app.page import layout, presentation, url
 from app.page.describe import Describer
 from core import Contact
 
-MESSAGE_CHARS = 400  # a message longer than this (it quotes a long link) is cut
 URL_DELAY_S = 0.4  # the URL follows the parameters this long after the last change (s)
 
 #: What the Motor card's "follow" box puts in the contact's state, and restores.
@@ -91,7 +89,7 @@ class Explorer(param.Parameterized):
         Messages quote what the user sent (the URL's values): they are shown as text,
         never as markup, long ones cut.  Unchanged messages are not sent again.
         """
-        text = "<br>".join(html.escape(textwrap.shorten(m, MESSAGE_CHARS, placeholder=" …"))
+        text = "<br>".join(html.escape(shortened(m))
                            for m in messages)
         if text != self.message.object or self.message.visible != bool(messages):
             self.message.param.update(object=text, visible=bool(messages))

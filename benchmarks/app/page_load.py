@@ -161,7 +161,7 @@ def gc_pauses(pages: int) -> list[tuple[float, float, int]]:
     from bokeh.document import Document
     from panel.io.state import set_curdoc
 
-    from app.page.explorer import build_explorer
+    from app.page.explorer import Explorer
 
     pn.extension("katex", notifications=False)
     full = {"start": 0.0, "total": 0.0}
@@ -180,7 +180,7 @@ def gc_pauses(pages: int) -> list[tuple[float, float, int]]:
             doc, full["total"] = Document(), 0.0
             t0 = time.perf_counter()
             with set_curdoc(doc):
-                explorer = build_explorer({})
+                explorer = Explorer(query={})
                 explorer.view().server_doc(doc)
             out.append((1e3 * (time.perf_counter() - t0), 1e3 * full["total"],
                         len(list(doc.models))))
