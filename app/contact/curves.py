@@ -23,7 +23,7 @@ from bokeh.models import (
 
 from app.kit.figures import (
     CURVE_POINTS,
-    FRAME_LEVEL,
+    DATA_LEVEL,
     LINE_COLORS,
     Scene,
     add_legend,
@@ -101,7 +101,7 @@ class CurveScene(Scene):
                  y_offset="dy")
             drawn = [(c, lb, color, dash) for c, lb, color, dash in self.curves if c in cols]
             lines = [draw(fig, Line, self.source, x="tau", y=col, color=color, line_width=3,
-                          line_dash=dash, level=FRAME_LEVEL, name=f"{self.name}_{col}")
+                          line_dash=dash, level=DATA_LEVEL, name=f"{self.name}_{col}")
                      for col, _, color, dash in drawn]
             # the curves are drawn above the legend's level, so the legend goes outside
             # the frame: in one row above it (beside it, it left a phone a narrow frame)
@@ -113,12 +113,12 @@ class CurveScene(Scene):
             view = {} if len(self._panels()) == 1 else {"view": CDSView(
                 filter=IndexFilter([rows[col] for col in cols]))}
             draw(fig, Scatter, self.marker, x="x", y="y", size=13, color="color",
-                 line_color="black", level=FRAME_LEVEL, **view)
+                 line_color="black", level=DATA_LEVEL, **view)
             # the cursor at the current tau is drawn from the marker's own source, so that
             # a frame changes one data source per plot (moving a Span model costs the
             # browser a full repaint of the plot)
             draw(fig, Segment, self.marker, x0="x", y0="lo", x1="x", y1="hi",
-                 line_color="#666666", line_width=2, line_dash="dotted", level=FRAME_LEVEL,
+                 line_color="#666666", line_width=2, line_dash="dotted", level=DATA_LEVEL,
                  **view)
             style_figure(fig)
             if k:

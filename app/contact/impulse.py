@@ -13,7 +13,7 @@ from bokeh.models import (
 
 from app.kit.figures import (
     CURVE_POINTS,
-    FRAME_LEVEL,
+    DATA_LEVEL,
     Scene,
     new_figure,
     style_figure,
@@ -72,7 +72,7 @@ class ImpulseScene(Scene):
         fig.text("psi", "ratio", text="label", source=self.points, text_font_size="13pt",
                  text_font_style="bold", x_offset=6, y_offset=-6)
         fig.scatter("psi", "ratio", source=self.marker, size=14, color="#D55E00",
-                    line_color="black", level=FRAME_LEVEL)
+                    line_color="black", level=DATA_LEVEL)
         style_figure(fig)
         return fig
 

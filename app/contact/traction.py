@@ -17,6 +17,7 @@ from bokeh.models import (
 
 from app.contact.phases import STICK_COLOR, style
 from app.kit.figures import (
+    DATA_LEVEL,
     FRAME_LEVEL,
     PROFILE_POINTS,
     Scene,
@@ -39,12 +40,12 @@ class TractionScene(Scene):
                                           "stick_hi")})
         fig = new_figure("Traction profile", "r / a*", "traction  τᵤ / (μ p*)", height=390)
         stick = draw(fig, VArea, self.source, x="r", y1="stick_lo", y2="stick_hi",
-                     fill_color=STICK_COLOR, fill_alpha=0.25, level=FRAME_LEVEL)
+                     fill_color=STICK_COLOR, fill_alpha=0.25, level=DATA_LEVEL)
         envelope = [draw(fig, Line, self.source, x="r", y=col, line_dash="dashed",
-                         color="grey", line_width=2, level=FRAME_LEVEL)
+                         color="grey", line_width=2, level=DATA_LEVEL)
                     for col in ("upper", "lower")]
         self.line = draw(fig, Line, self.source, x="r", y="traction", color="black",
-                         line_width=3, level=FRAME_LEVEL)
+                         line_width=3, level=DATA_LEVEL)
         # in one row above the frame (inside it, it covered the stick zone and the rim;
         # beside it, it left a phone too narrow a frame)
         add_legend(fig, [("stick zone", [stick]), ("±μ p", envelope), ("τᵤ", [self.line])],
@@ -130,7 +131,7 @@ class DiscScene(Scene):
                              line_dash="dotted", line_color="grey", line_width=2)
         draw(fig, Annulus, self.source, x="x", y="y", inner_radius="inner",
              outer_radius="outer", fill_color="color", line_color="black", line_width=1,
-             level=FRAME_LEVEL)
+             level=DATA_LEVEL)
         fig.x_range.start, fig.x_range.end = -1.15, 1.15
         fig.y_range.start, fig.y_range.end = -1.15, 1.15
         style_figure(fig)

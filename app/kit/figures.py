@@ -37,10 +37,14 @@ CURVE_POINTS = 400  # points per curve over the contact: finer than any screen n
 PROFILE_POINTS = 151  # points across the contact diameter for the traction profile
 
 LINE_COLORS = ("#000000", "#D55E00", "#0072B2", "#CC79A7", "#009E73")
-#: Bokeh level of everything that changes on an animation frame or a slider move: the
-#: browser then repaints only the plot's overlay layer, not its axes, grid and legend
-#: (repainting a legend restyles the page, which is what costs most in the browser).
+#: Bokeh level of what changes on an animation frame or a slider move in a figure that
+#: cannot be panned or zoomed, and of labels (which BokehJS clips to the frame): the
+#: browser then repaints only the plot's overlay layer, not its axes, grid and legend.
+#: BokehJS does not clip glyphs at this level: a panned curve would cover the title.
 FRAME_LEVEL = "overlay"
+#: Bokeh level of the data glyphs of a figure with pan and zoom tools: clipped to the
+#: frame (BokehJS repaints the plot's primary layer, axes and grid too, when they change).
+DATA_LEVEL = "glyph"
 
 
 def style_figure(fig) -> None:
