@@ -24,6 +24,13 @@ p50/p95/max latency, the changes answered, the messages per answered change (the
 server's PATCH-DOCs while a change was in flight), late ticks, errors, the server's resident
 memory (RSS, all its processes) and its CPU use (in % of one core, over the recorded
 window), and the load client's own CPU (it shares the machine's cores with the server).
+Per serving process (`load_figures`: each replica, or each forked ``--num-procs``
+child) it reports the CPU over the window, the busiest over their mean (target 1.3x)
+and its sessions (from the balancer's log, or the process's websockets); the server's
+CPU per answered move in ms and in closed-form contacts (the yardstick of
+benchmarks/app/page_load.py, read after each level), and the machine's load average.
+At the end: the sizing rule, the most sessions per serving process (one core each)
+whose p95 stays within 200 ms.
 
 Bounded: at most ``--max-sessions`` (200) sessions, every level ends after its
 duration, every wait has a timeout, and the target must be a loopback address.
@@ -32,7 +39,8 @@ duration, every wait has a timeout, and the target must be a loopback address.
     python benchmarks/app/load_test.py --serve 2
     # any running server or balancer on this machine, its processes found by port:
     python benchmarks/app/load_test.py --url http://127.0.0.1:8080/main --pids 1234,1240
-    # two replicas behind nginx (docker/replicas.py), everything started and stopped here:
+    # two replicas behind nginx (docker/replicas.py), everything started and stopped here
+    # (make load-test):
     python benchmarks/app/load_test.py --replicas 2
 
 Abuse (``--abuse [KIND ...]``, issue 22): one probe session moving ψ every
@@ -77,6 +85,9 @@ sys.path.insert(0, str(ROOT / "tests" / "app"))
 
 from explorer_browser import free_port  # noqa: E402
 from explorer_browser import wait_for_http as wait_http  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import load_figures  # noqa: E402
 
 #: The event BokehJS sends when the page's document is rendered (a PATCH-DOC event).
 DOCUMENT_READY = {"kind": "MessageSent", "msg_type": "bokeh_event",
@@ -387,8 +398,13 @@ def pct(values: list[float], q: float) -> float:
 
 async def run_levels(url: str, levels: list[int], duration: float, warmup: float,
                      interval: float, timeout: float, pids: list[int], slider: str | None,
-                     open_concurrency: int = 4) -> list[dict]:
+                     open_concurrency: int = 4, serving: list[int] | None = None,
+                     placement=None) -> list[dict]:
+    """The levels one after the other; a row of figures per level.  `serving`: the
+    server processes whose CPU is compared (default: `load_figures.serving_pids`);
+    `placement(live sessions, serving)`: sessions per serving process."""
     AsyncHTTPClient.configure(None, max_clients=max(levels) + 10)
+    serving = serving or (load_figures.serving_pids(pids) if pids else [])
     http = AsyncHTTPClient()
     sessions: list[Session] = []
     results = []
@@ -437,6 +453,8 @@ async def run_levels(url: str, levels: list[int], duration: float, warmup: float
             wall = max(time.perf_counter() - t1, 1e-3)
             rss1, cpu1 = usage(pids)
             me = time.process_time() - me0
+            load = load_figures.load_average()
+            placed = placement(live, serving) if placement and serving else None
             for s in live:
                 if s.pending and s.alive:
                     stats.error(f"no update within {timeout:g} s")
@@ -461,7 +479,14 @@ async def run_levels(url: str, levels: list[int], duration: float, warmup: float
                     reverse=True),
                 "client_cpu_pct": round(100 * me / wall, 0),
                 "session_open_s": round(open_s, 1),
+                # each serving process's CPU % (in the order of `serving`), max / mean
+                "cpu_spread": load_figures.cpu_spread(cpu0, cpu1, wall, serving),
+                "sessions_per_process": placed,
+                "load_average": load,
+                "yardstick_us": round(load_figures.yardstick_us(), 1),
             }
+            row.update(load_figures.per_move(sum(cpu1.values()) - sum(cpu0.values()),
+                                             len(lat), row["yardstick_us"]) if pids else {})
             results.append(row)
             print(f"[load] {json.dumps(row)}", file=sys.stderr)
     finally:
@@ -857,15 +882,25 @@ def loopback_only(url: str) -> None:
 
 
 def table(results: list[dict]) -> str:
+    """The levels as a Markdown table (rows as `run_levels` gives them)."""
     head = ("| sessions | p50 ms | p95 ms | max ms | updates/s | messages/update "
-            "| late ticks | errors | server RSS MiB | server CPU % | client CPU % |")
-    lines = [head, "|" + " --- |" * 11]
+            "| late ticks | errors | server RSS MiB | server CPU % | CPU % per process "
+            "| max/mean | sessions per process | CPU ms per move | = contacts "
+            "| client CPU % | load avg |")
+    lines = [head, "|" + " --- |" * 17]
     for r in results:
+        spread = r.get("cpu_spread") or {}
+        placed = r.get("sessions_per_process")
         lines.append(
             f"| {r['sessions']} | {r['p50_ms']} | {r['p95_ms']} | {r['max_ms']} "
             f"| {r['updates_per_s']} | {r['messages_per_update']} "
             f"| {r['late_ticks']} | {r['errors']} "
-            f"| {r['server_rss_mib']:.0f} | {r['server_cpu_pct']} | {r['client_cpu_pct']} |")
+            f"| {r['server_rss_mib']:.0f} | {r['server_cpu_pct']} "
+            f"| {' / '.join(map(str, spread.get('cpu_pct', []))) or '-'} "
+            f"| {spread.get('max_over_mean') or '-'} "
+            f"| {' / '.join(map(str, placed)) if placed else '-'} "
+            f"| {r.get('cpu_ms_per_move') or '-'} | {r.get('contacts_per_move') or '-'} "
+            f"| {r['client_cpu_pct']} | {r.get('load_average', '-')} |")
     return "\n".join(lines)
 
 
@@ -912,6 +947,7 @@ def main(argv: list[str] | None = None) -> int:
 
     started = None
     stack = None
+    serving = placement = None
     pids = [int(x) for x in args.pids.split(",") if x.strip()]
     log = None
     if args.serve is not None:
@@ -927,6 +963,9 @@ def main(argv: list[str] | None = None) -> int:
         stack = replicas.Stack(n=args.replicas, procs=args.procs).start()
         url = stack.url + "/main"
         pids = [r.proc.pid for r in stack.replicas]
+        if args.procs == 1:  # each replica is one serving process: sessions from the log
+            serving = pids
+            placement = load_figures.replica_placement(stack)
         setup = (f"{args.replicas} x python -m app.serve --num-procs {args.procs} behind "
                  f"nginx {stack.nginx_version} (docker/nginx.conf)")
     else:
@@ -950,10 +989,14 @@ def main(argv: list[str] | None = None) -> int:
             args.json.write_text(json.dumps({"setup": setup, "cpus": os.cpu_count(),
                                              "rows": rows}, indent=2) + "\n")
         return 0
+    if placement is None and pids:
+        placement = load_figures.process_placement(urlsplit(url).port)
     try:
-        print(f"[load] {setup}; {os.cpu_count()} CPUs; levels {levels}", file=sys.stderr)
+        print(f"[load] {setup}; {os.cpu_count()} CPUs; levels {levels}; load average "
+              f"{load_figures.load_average()}", file=sys.stderr)
         results = asyncio.run(run_levels(url, levels, args.duration, args.warmup,
-                                         args.interval, args.timeout, pids, args.slider))
+                                         args.interval, args.timeout, pids, args.slider,
+                                         serving=serving, placement=placement))
     finally:
         if started is not None:
             stop(started)
@@ -962,10 +1005,14 @@ def main(argv: list[str] | None = None) -> int:
     print(f"setup: {setup}; {os.cpu_count()} CPUs; a move every {args.interval:g} s per "
           f"session; {args.duration:g} s recorded per level after {args.warmup:g} s")
     print(table(results))
+    processes = max((len(r["cpu_spread"]["cpu_pct"]) for r in results), default=0)
+    rule = load_figures.sizing(results, processes, args.interval) if processes else None
+    if rule:
+        print(load_figures.sizing_text(rule, args.interval))
     if args.json:
         args.json.write_text(json.dumps({"setup": setup, "cpus": os.cpu_count(),
                                          "args": {k: str(v) for k, v in vars(args).items()},
-                                         "results": results}, indent=2) + "\n")
+                                         "results": results, "sizing": rule}, indent=2) + "\n")
     return 0
 
 
