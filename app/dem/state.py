@@ -2,8 +2,9 @@
 
 `DemState.case` and `DemState.models` are checked by their parameters (a name the card
 does not offer is refused); `upload` reads a file's bytes (`app.dem.data.read_upload`)
-into `history`, and the score of the history against the case follows whenever either
-changes: `score`, or `message` saying why there is none.
+into `history` (`refuse` drops it, for a file refused before it was read), and the
+score of the history against the case follows whenever either changes: `score`, or
+`message` saying why there is none.
 """
 
 from __future__ import annotations
@@ -45,6 +46,10 @@ class DemState(param.Parameterized):
             return
         named = history.header.get("name")
         self.param.update(history=history, **({"case": named} if named in CASES else {}))
+
+    def refuse(self, message: str) -> None:
+        """A file refused before it was read (`message`: why): no history is kept."""
+        self.param.update(history=None, score=None, message=message)
 
     @param.depends("case", "history", watch=True)
     def _score(self) -> None:

@@ -4,8 +4,10 @@ it is first opened.
 Inside: a case of `core.dem_check` and LAMMPS' models to overlay; one figure with the
 exact T(tau), the Coulomb bounds, LAMMPS' precomputed runs and the visitor's history
 (named sources `dem_exact`, `dem_lammps`, `dem_upload`, updated in place); an upload box
-for a CSV (read in memory only, `app.dem.data.read_upload`) with the reason under it
-when it is refused, and the score table; the case's test vectors and LAMMPS deck to
+for a CSV (`app.dem.upload.CsvUpload`: a file over the cap is refused by the browser
+before it is sent, a smaller one is sent in pieces and read in memory only,
+`app.dem.data.read_upload`) with the reason under it when it is refused, and the score
+table; the case's test vectors and LAMMPS deck to
 download. It needs nothing from the rest of the page.
 """
 
@@ -21,6 +23,7 @@ from panel.io import hold
 
 from app.dem import data
 from app.dem.state import DemState
+from app.dem.upload import CsvUpload
 from app.kit.figures import fit_range, new_figure, style_figure
 from app.kit.widgets import ERROR_STYLE, bind, shortened, text_html
 from core.dem_check import CASES, lammps
@@ -33,7 +36,7 @@ INTRO = (
     "the coloured ones LAMMPS' tangential models on the same loading. Run the case in "
     "your own code, upload its force history on the held sphere as a CSV with columns "
     "`tau` (rad), `T` (T/T₀, along the drive) and `P` (P/P₀), and see it scored and drawn "
-    f"(at most {data.MAX_UPLOAD_BYTES // 1024} KB and {data.MAX_UPLOAD_ROWS:,} rows: "
+    f"(at most {data.size_text(data.MAX_UPLOAD_BYTES)} and {data.MAX_UPLOAD_ROWS:,} rows: "
     "keep every k-th step of a longer run). `docs/dem_check.md` says how the scores are "
     "defined.")
 
@@ -100,9 +103,11 @@ class DemCard(pn.viewable.Viewer):
         self.overlay_note = pn.pane.Markdown("", sizing_mode="stretch_width",
                                              styles={"font-size": "0.9em"})
         self.figure = self._figure()
-        self.upload = pn.widgets.FileInput(accept=".csv,text/csv", multiple=False,
-                                           label="Your code's history (CSV: tau, T, P)")
-        self.upload.param.watch(lambda e: s.upload(e.new), "value")
+        self.upload = CsvUpload(on_file=s.upload, on_refused=s.refuse,
+                                label="Your code's history (CSV: tau, T, P)",
+                                accept=".csv,text/csv,text/plain",
+                                max_bytes=data.MAX_UPLOAD_BYTES, name="dem_upload_box",
+                                sizing_mode="stretch_width")
         self.message = pn.pane.HTML("", visible=False, styles=ERROR_STYLE,
                                     sizing_mode="stretch_width", name="dem_message")
         self.score_table = pn.pane.HTML("", visible=False, stylesheets=[TABLE_CSS],

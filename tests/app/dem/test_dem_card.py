@@ -4,13 +4,27 @@ the message under the upload box."""
 
 from __future__ import annotations
 
+import base64
+import math
+
 import numpy as np
 import pytest
 from bokeh.document import Document
 
 from app.dem import data
+from app.dem.upload import CHUNK_BYTES
 from app.dem.view import TITLE, DemCard
 from core.dem_check import CASES, exact
+
+
+def send(card: DemCard, content: bytes, serial: str = "s") -> None:
+    """Send `content` to the card's upload box as the browser's script does: in pieces
+    ("serial:index:count:size:base64"), each once the last is acknowledged."""
+    count = max(1, math.ceil(len(content) / CHUNK_BYTES))
+    for i in range(count):
+        piece = base64.b64encode(content[i * CHUNK_BYTES:(i + 1) * CHUNK_BYTES]).decode()
+        card.upload.chunk = f"{serial}:{i}:{count}:{len(content)}:{piece}"
+        assert card.upload.ack == f"{serial}:{i}"
 
 
 @pytest.fixture
@@ -65,29 +79,43 @@ def test_the_model_boxes_choose_the_overlays(opened) -> None:
 
 def test_an_upload_is_scored_and_drawn(opened) -> None:
     card, doc = opened
-    ref = exact(CASES["fig7_psi2.41"])
+    ref = exact(CASES["fig7_psi2.41"], 6000)
     rows = "\n".join(f"{a:.17g},{b:.17g},{c:.17g}" for a, b, c in
                      zip(ref.tau, 1.01 * ref.T, ref.P, strict=True))
-    card.upload.value = f"tau,T,P\n{rows}\n".encode()
+    content = f"tau,T,P\n{rows}\n".encode()
+    assert CHUNK_BYTES < len(content) < 2 * CHUNK_BYTES  # two pieces
+    send(card, content)
+    np.testing.assert_array_equal(card.state.history.T, 1.01 * ref.T)
     table = card.score_table.object
     assert card.score_table.visible and not card.message.visible
     assert "<caption>Your file against fig7_psi2.41</caption>" in table
     worst = float(np.max(np.abs(0.01 * ref.T)))
     assert f"<td>{worst:.3e} T₀ at τ = " in table
     upload = doc.select_one({"name": "dem_upload"})
-    np.testing.assert_array_equal(upload.data["T"], 1.01 * ref.T)
+    np.testing.assert_array_equal(upload.data["T"], 1.01 * ref.T[::2])  # 4000 drawn
 
 
 def test_a_refused_upload_says_why_under_the_box(opened) -> None:
     card, _ = opened
-    card.upload.value = b"tau,T,P\n0,0,0\n3,0,0\n"  # scored, then replaced by:
+    send(card, b"tau,T,P\n0,0,0\n3,0,0\n", "a")  # scored, then replaced by:
     assert card.score_table.visible
-    card.upload.value = b"tau,T,P\n0,0,0\n1,<b>x</b>,0\n"
+    send(card, b"tau,T,P\n0,0,0\n1,<b>x</b>,0\n", "b")
     assert card.message.visible and not card.score_table.visible
     assert card.message.object == ("your file, line 3, column &#x27;T&#x27;: "
                                    "&#x27;&lt;b&gt;x&lt;/b&gt;&#x27; is not a number")
     assert len(card.sources["upload"].data["tau"]) == 0
     assert card.score_table.object == ""
+
+
+def test_a_file_the_browser_refused_for_its_size_is_said_under_the_box(opened) -> None:
+    card, _ = opened
+    send(card, b"tau,T,P\n0,0,0\n3,0,0\n")
+    assert card.score_table.visible
+    card.upload.refused = f"big:{data.MAX_UPLOAD_BYTES + 1}"
+    assert card.message.visible and not card.score_table.visible
+    assert card.message.object == ("your file has 2,097,153 bytes, more than the "
+                                   "2,097,152 accepted: keep every k-th step")
+    assert len(card.sources["upload"].data["tau"]) == 0
 
 
 def test_a_case_the_card_does_not_offer_is_refused(opened) -> None:

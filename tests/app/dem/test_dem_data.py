@@ -14,7 +14,6 @@ import pytest
 
 from app.dem import data
 from app.dem.state import DemState
-from app.serve import SESSION
 from core.dem_check import CASES, exact, lammps, score
 from core.dem_check.vectors import read_history
 
@@ -95,13 +94,13 @@ def test_an_upload_for_another_case_says_what_it_lacks() -> None:
     assert state.message == "" and state.score.max_T_error == 0.0
 
 
-def test_the_upload_cap_fits_the_servers_websocket_message_cap() -> None:
-    """The browser sends the file base64-encoded in one message; app.serve closes a
-    connection whose message is larger."""
-    assert 4 * math.ceil(data.MAX_UPLOAD_BYTES / 3) + 16 * 1024 < SESSION[
-        "websocket_max_message_size"]
-    # and the row cap is reachable under the byte cap
+def test_the_upload_cap_is_reachable_by_the_row_cap_and_said_in_words() -> None:
+    """The file goes in pieces (`app.dem.upload`): the cap is not the websocket's."""
+    assert data.MAX_UPLOAD_BYTES == 2 * 1024 * 1024
     assert 6 * (data.MAX_UPLOAD_ROWS + 1) < data.MAX_UPLOAD_BYTES
+    assert data.size_text(data.MAX_UPLOAD_BYTES) == "2 MiB"
+    assert data.size_text(360 * 1024) == "360 KiB"
+    assert data.size_text(1000) == "1,000 bytes"
 
 
 GOOD = "tau,T,P\n0,0,0\n3.2,0,0\n"
@@ -118,8 +117,9 @@ GOOD = "tau,T,P\n0,0,0\n3.2,0,0\n"
                                     "number"),
     (b"tau,T,P\n0,0\n", "your file, line 2: 2 values, expected 3 (tau, T, P)"),
     (b"tau,T,P\n" + b"0,0,0\n" * 50_001, "your file: more than 50000 rows"),
-    (b"tau,T,P\n" + b"0" * (360 * 1024), "your file has 368,648 bytes, more than the "
-                                         "368,640 accepted: keep every k-th step"),
+    (b"tau,T,P\n" + b"0" * (2 * 1024 * 1024), "your file has 2,097,160 bytes, more than "
+                                               "the 2,097,152 accepted: keep every k-th "
+                                               "step"),
     (b"", "your file is empty: it needs a header row tau,T,P"),
     (b" \n\n", "your file is empty"),
     (b"tau,T,P\n", "your file: no data rows after the header row"),
