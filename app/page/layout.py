@@ -1,12 +1,17 @@
-"""The page: the explorer's controls in the sidebar, its scenes in cards in the main area.
+"""The page: the explorer's controls in the sidebar, beside them the two spheres with
+the animation's controls (Play, Step, the time, the speed), then the other scenes in
+cards in the main area.
 
-Sizes and type are for a projector (17 px base, never below 16 px); on a phone the cards
-stack.  Every control shows a ring when the keyboard is on it, and the sidebar's
-"Keyboard" card lists the keys the page answers to.  For a screen reader the page has
-landmarks (banner, the sidebar a complementary region, main), each plot a name and a
-description that follows the state (`app.page.describe.descriptions`), a polite live
-region announcing a change of phase, and the curve tabs are a keyboard-operable tab
-list (`app.kit.a11y.TabList`).
+Sizes and type are for a projector (17 px base, never below 16 px); on a phone (at most
+`PHONE_WIDTH` px wide) everything stacks in one column, the spheres and Play first (the
+first screen), then the controls, then the other scenes; on a touch screen a swipe over
+a plot scrolls the page (`app.kit.touch.PlotGestures`).  Every control shows a ring when
+the keyboard is on it, and the sidebar's "Keyboard" card lists the keys the page
+answers to.  For a screen reader the page has landmarks (banner, the sidebar a
+complementary region, the animation a region, main), each plot a name and a description
+that follows the state (`app.page.describe.descriptions`), a polite live region
+announcing a change of phase, and the curve tabs are a keyboard-operable tab list
+(`app.kit.a11y.TabList`).
 """
 
 from __future__ import annotations
@@ -20,6 +25,7 @@ import panel as pn
 from app.contact.phases import STYLES
 from app.contact.view import TAB_TITLES, ContactView
 from app.kit.a11y import KeyShortcut, Landmark, TabList
+from app.kit.touch import PlotGestures
 from core import Phase
 
 #: Colour key of the contact disc (the figure has no legend, see DiscScene).
@@ -28,6 +34,9 @@ DISC_KEY = " ".join(
     for p, name in ((Phase.FULL_STICK, "stick"), (Phase.SLIP, "slip"),
                     (Phase.COUNTER_SLIP, "counter-slip")))
 
+
+#: The widest screen (CSS px) laid out as a phone's: type at 16 px, one column.
+PHONE_WIDTH = 700
 
 #: Colour of the ring around the control the keyboard is on (6.3:1 on white).
 FOCUS_COLOR = "#1A5FB4"
@@ -44,7 +53,9 @@ FOCUS_COLOR = "#1A5FB4"
 CSS = f"""
 :root {{ --bokeh-font-size: 17px; }}
 html {{ font-size: 17px; }}
-@media (max-width: 700px) {{ :root {{ --bokeh-font-size: 16px; }} html {{ font-size: 16px; }} }}
+@media (max-width: {PHONE_WIDTH}px) {{
+  :root {{ --bokeh-font-size: 16px; }} html {{ font-size: 16px; }}
+}}
 input, select, textarea {{ font-size: inherit; }}
 :host :focus-visible {{ outline: 3px solid {FOCUS_COLOR}; outline-offset: 2px; }}
 input[type="checkbox"] + * {{ margin-left: 0.5em; }}
@@ -69,10 +80,16 @@ TITLE = "Zharii (1996): two elastic spheres in intermittent frictional contact"
 #: The header bar (the page's one <h1>).
 HEADER_STYLE = {"background": "#0072B2", "color": "white", "padding": "0.4em 1em",
                 "font-size": "1.3em", "font-weight": "bold"}
-#: The <h1> in the header bar, in the bar's type.
-HEADING_CSS = "h1 { font-size: inherit; font-weight: inherit; margin: 0; }"
-#: The sidebar's headings (<h2>, the level below the page's title) at the size of an <h3>.
-SUBHEADING_CSS = "h2 { font-size: 1.17em; }"
+#: The <h1> in the header bar, in the bar's type (smaller on a phone: two lines at 390 px).
+HEADING_CSS = ("h1 { font-size: inherit; font-weight: inherit; margin: 0; }"
+               f" @media (max-width: {PHONE_WIDTH}px) {{ h1 {{ font-size: 0.8em; }} }}")
+
+#: The name of the region holding the two spheres and the animation's controls.
+ANIMATION_LABEL = "Animation"
+
+#: On a phone the animation (the spheres, Play and the time) comes first, above the
+#: controls: the first screen shows them; the other scenes follow the controls.
+PHONE_ORDER_CSS = f"@media (max-width: {PHONE_WIDTH}px) {{ .animation {{ order: -1; }} }}"
 
 
 def heading() -> pn.pane.HTML:
@@ -197,9 +214,10 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
          cards: list[pn.viewable.Viewable],
          descriptions: Mapping[str, pn.viewable.Viewable] | None = None,
          announcer: pn.viewable.Viewable | None = None) -> pn.Column:
-    """The explorer's page: a header, the controls in a sidebar, the scenes beside it (a
-    plain Panel layout: a template's header, modal and theming tripled the server's work
-    per page load); on a narrow screen the sidebar stacks above the scenes.  `contact`
+    """The explorer's page: a header, the controls in a sidebar, the two spheres with the
+    animation's controls beside it, the other scenes beside or below them (a plain Panel
+    layout: a template's header, modal and theming tripled the server's work per page
+    load); on a phone the spheres and Play come first, the controls below.  `contact`
     gives the scenes and controls, `message` is the page's banner, `cards` the cards
     below the scenes (Fig. 6 in full, Methods, Motor); `descriptions` the plots' names
     and descriptions for a screen reader (by `app.page.describe.PLOT_NAMES`' keys),
@@ -213,23 +231,22 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
         ui.drive_control,
         ui.psi_slider, ui.theta_slider, ui.tau0_slider, ui.mu_slider, ui.nu_slider,
         ui.drive_note,
-        pn.pane.Markdown("## Time", stylesheets=[SUBHEADING_CSS]),
-        ui.tau_slider,
-        pn.Row(ui.play_button, ui.step_button),
-        ui.speed_slider,
         ui.log_box,
         ui.physical_card,
         pn.Row(ui.downloads["traction"], ui.downloads["impulse"]),
         keyboard_card(),
         play_key(contact),
     ]
+    animation = card(
+        *described(pn.pane.Bokeh(contact.spheres.figure, sizing_mode="stretch_width"),
+                   "spheres", descriptions),
+        pn.Row(ui.play_button, ui.step_button), ui.tau_slider, ui.speed_slider,
+        title="The two spheres (Fig. 2)", flex="0 0 auto")
     main = [
         message,
         *([announcer] if announcer is not None else []),
+        PlotGestures(),
         pn.FlexBox(
-            card(*described(pn.pane.Bokeh(contact.spheres.figure, sizing_mode="stretch_width"),
-                            "spheres", descriptions),
-                 title="The two spheres (Fig. 2)", flex="0 1 440px"),
             card(*described(pn.pane.Bokeh(contact.traction.figure,
                                           sizing_mode="stretch_width"),
                             "traction", descriptions),
@@ -250,7 +267,11 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
             Landmark(object=pn.Column(*sidebar, sizing_mode="stretch_width"),
                      role="complementary", label="Controls",
                      styles={"flex": "0 1 370px", "min-width": "0"}),
+            Landmark(object=pn.Column(animation, sizing_mode="stretch_width"),
+                     role="region", label=ANIMATION_LABEL, css_classes=["animation"],
+                     styles={"flex": "0 1 440px", "min-width": "0"}),
             Landmark(object=pn.Column(*main, sizing_mode="stretch_width"), role="main",
                      styles={"flex": "1 1 600px", "min-width": "0"}),
-            flex_wrap="wrap", align_items="flex-start", sizing_mode="stretch_width"),
+            flex_wrap="wrap", align_items="flex-start", sizing_mode="stretch_width",
+            stylesheets=[PHONE_ORDER_CSS]),
         sizing_mode="stretch_width")
