@@ -47,6 +47,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 CONF = ROOT / "docker" / "nginx.conf"
 
+#: Seconds a replica may take to answer /liveness: a first start compiles the closed
+#: form's kernels (15-30 s on 2 idle cores, minutes on busy ones).
+START_TIMEOUT = 240.0
+
 TOP = """\
 daemon off;
 worker_processes 1;
@@ -152,7 +156,7 @@ class Stack:
                                         start_new_session=True)
                 self.replicas.append(Replica(port, proc))
             for r in self.replicas:
-                wait_http(f"http://{r.addr}/liveness", proc=r.proc)
+                wait_http(f"http://{r.addr}/liveness", START_TIMEOUT, proc=r.proc)
             servers = " ".join(f"server {r.addr};" for r in self.replicas)
             conf = render(CONF.read_text(), LISTEN=f"127.0.0.1:{self.port}",
                           UPSTREAM_SERVERS=servers)
