@@ -1,12 +1,11 @@
 """The card's upload box: a file input that checks a file's size in the browser and sends
 the file in pieces, each its own websocket message.
 
-Panel's `FileInput` sends a whole file base64-encoded in one message, and the server
-closes a connection whose message exceeds 512 KiB (`app.serve.SESSION`): a larger file
-ended the session before the card could say anything.  `CsvUpload` is Panel's public
-`ReactiveHTML` (its scripts run under the page's Content-Security-Policy, which allows
-`new Function` but no `blob:` module, what a `JSComponent` is loaded as; and it loads
-nothing from elsewhere):
+The server closes a connection whose message exceeds 512 KiB (`app.serve.SESSION`),
+and Panel's `FileInput` sends a whole file base64-encoded in one message; `CsvUpload`
+never sends a message near that size.  It is Panel's public `ReactiveHTML` (its scripts
+run under the page's Content-Security-Policy, which allows `new Function` but no `blob:`
+module, what a `JSComponent` is loaded as; and it loads nothing from elsewhere):
 
 - a file over `max_bytes` is never read: the browser reports its size (`refused`) and
   the card says why under the box;
@@ -17,6 +16,9 @@ nothing from elsewhere):
 - the server checks every piece again (`parse_chunk`: its place, the declared size
   against `max_bytes`) and hands the whole file, in memory, to `on_file`; a refusal goes
   to `on_refused` as a sentence.  Nothing is written to disk.
+
+A line under the input (a polite live region) says what became of the file chosen:
+"NAME: sending, 2 of 8", "NAME: sent", "NAME: not sent" (over the cap).
 """
 
 from __future__ import annotations
@@ -91,6 +93,7 @@ def refusal(text: str, max_bytes: int) -> str:
 _RENDER = """
 title.textContent = data.label;
 state.serial = "";
+state.say = (text) => { status.textContent = text; };
 state.send = (serial, index) => {
   const file = state.file;
   if (file == null || serial !== state.serial) return;
@@ -102,9 +105,11 @@ state.send = (serial, index) => {
     for (let i = 0; i < bytes.length; i += 0x8000) {
       text += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
     }
+    state.say(`${file.name}: sending, ${index + 1} of ${state.count}`);
     data.chunk = `${serial}:${index}:${state.count}:${file.size}:${btoa(text)}`;
   }, () => {
     state.file = null;
+    state.say(`${file.name}: not read`);
     data.refused = `${serial}:-1`;
   });
 };
@@ -118,6 +123,7 @@ const serial = Math.random().toString(36).slice(2, 12) || "0";
 state.serial = serial;
 if (file.size > data.max_bytes) {
   state.file = null;
+  state.say(`${file.name}: not sent`);
   data.refused = `${serial}:${file.size}`;
   return;
 }
@@ -130,8 +136,12 @@ _ACK = """
 const [serial, index] = data.ack.split(":");
 if (serial !== state.serial || state.file == null) return;
 const next = Number(index) + 1;
-if (next < state.count) state.send(serial, next);
-else state.file = null;
+if (next < state.count) {
+  state.send(serial, next);
+} else {
+  state.say(`${state.file.name}: sent`);
+  state.file = null;
+}
 """
 
 
@@ -152,12 +162,13 @@ class CsvUpload(pn.reactive.ReactiveHTML):
         '<label id="box" class="box">'
         '<span id="title" class="title"></span>'
         '<input type="file" id="input" accept="${accept}" '
-        'onchange="${script(\'pick\')}"></input></label>')
+        'onchange="${script(\'pick\')}"></input></label>'
+        '<div id="status" class="status" aria-live="polite"></div>')
 
     _scripts: ClassVar[dict[str, str]] = {"render": _RENDER, "pick": _PICK, "ack": _ACK}
 
     CSS = (".box { display: flex; flex-direction: column; gap: 4px; }"
-           "input { min-height: 24px; }")
+           "input { min-height: 24px; } .status { font-size: 0.9em; color: #444; }")
 
     def __init__(self, on_file: Callable[[bytes], None],
                  on_refused: Callable[[str], None], **params) -> None:

@@ -107,7 +107,7 @@ class DemCard(pn.viewable.Viewer):
                                 label="Your code's history (CSV: tau, T, P)",
                                 accept=".csv,text/csv,text/plain",
                                 max_bytes=data.MAX_UPLOAD_BYTES, name="dem_upload_box",
-                                sizing_mode="stretch_width")
+                                margin=(5, 10), sizing_mode="stretch_width")
         self.message = pn.pane.HTML("", visible=False, styles=ERROR_STYLE,
                                     sizing_mode="stretch_width", name="dem_message")
         self.score_table = pn.pane.HTML("", visible=False, stylesheets=[TABLE_CSS],

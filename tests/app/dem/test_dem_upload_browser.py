@@ -90,6 +90,7 @@ def test_a_file_over_the_cap_is_refused_and_the_page_goes_on(browser, url) -> No
     page.get_by_text(f"your file has {len(big):,} bytes, more than the "
                      f"{data.MAX_UPLOAD_BYTES:,} accepted").wait_for(state="visible",
                                                                       timeout=30_000)
+    assert page.get_by_text("big.csv: not sent").is_visible()
     step_psi_updates_traction(page)
     assert max(watched.sent) < 4096  # the file itself never left the browser
     assert not watched.closed and watched.errors == []
@@ -106,6 +107,7 @@ def test_a_file_of_several_pieces_is_scored(browser, url) -> None:
     worst = float(np.max(np.abs(0.02 * exact(CASES["fig7_psi2.41"], 6000).T)))
     assert page.get_by_text(f"{worst:.3e} T₀ at τ = ").is_visible()
     assert page.evaluate(JS_LENGTH, ["dem_upload", "T"]) > 0
+    assert page.get_by_text("mine.csv: sent").is_visible()
     pieces = [n for n in watched.sent if n > 64 * 1024]  # the rest: a few hundred bytes
     assert len(pieces) == 2 and 4 * CHUNK_BYTES / 3 < max(pieces) < SESSION[
         "websocket_max_message_size"]
