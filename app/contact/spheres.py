@@ -17,8 +17,11 @@ The contact patch is drawn with core's a / a* on that exaggerated scale.
 Below them, a strip shows one whole period (tau from -pi/2 to 3 pi/2): the lower
 sphere's height u_z0 / H = sin tau (eq 3), the contact (sin tau > sin tau0, eq 4)
 shaded, the gaps before and after it marked "apart", and the current tau marked
-(`drawing` at a tau in the gap draws the spheres apart: no patch, no force).  The
-other plots stay on the contact.
+(`drawing` at a tau in the gap draws the spheres apart: no patch, no force).  Under the
+strip a row of small pictograms (`app.contact.pictograms`) shows the spheres at six
+times of the period, each joined to its time on the strip: apart, closing, touching,
+in contact, releasing, opening; the gap is open outside the contact.  The other plots
+stay on the contact.
 
 Every number comes from `core` through `drawing(c, taus)`, which gives each source's
 columns at K times as arrays of shape (K, n): `update_tau` shows one time, the browser's
@@ -35,6 +38,7 @@ from bokeh.models import (
     Label,
     Line,
     Patch,
+    Patches,
     Range1d,
     SaveTool,
     Scatter,
@@ -44,6 +48,7 @@ from bokeh.models import (
 )
 from bokeh.plotting import figure
 
+from app.contact import pictograms
 from app.contact.phases import STICK_COLOR, style
 from app.kit.figures import FRAME_LEVEL, Scene, draw, png_name, style_figure
 from app.kit.wire import column, inline
@@ -191,12 +196,17 @@ class SpheresScene(Scene):
                                                name="spheres_period_contact")
         self.period_words = ColumnDataSource({"x": [], "text": []},
                                              name="spheres_period_words")
+        #: the spheres at six times of the period (static per contact)
+        self.pictograms = ColumnDataSource(
+            {k: [] for k in pictograms.pictograms(Contact(0.5, 0.5))} | {"x_strip": [],
+                                                                          "y_strip": []},
+            name="spheres_pictograms")
         # equal scales on both axes: the plot area (about 400 x 560 px) spans 3.2 x 4.5
         # (scaled down, its aspect kept, on a screen narrower than that)
-        # (and 0.95 R more below, for the period strip)
-        fig = figure(title="Two spheres in section", width=420, height=757, max_width=420,
+        # (and 1.65 R more below, for the period strip and the pictograms under it)
+        fig = figure(title="Two spheres in section", width=420, height=849, max_width=420,
                      sizing_mode="scale_width", x_range=Range1d(-1.6, 1.6),
-                     y_range=Range1d(-3.4, 2.1), tools="save", toolbar_location="above",
+                     y_range=Range1d(-4.1, 2.1), tools="save", toolbar_location="above",
                      x_axis_type=None, y_axis_type=None)  # (no axes, no grid)
         fig.select_one(SaveTool).filename = png_name(fig.title.text)
         s = self.sources
@@ -208,6 +218,14 @@ class SpheresScene(Scene):
         draw(fig, Text, self.period_words, x="x", y=STRIP_Y + STRIP_HEIGHT + 0.03,
              text="text", text_align="center", text_baseline="bottom", text_font_size="10pt",
              text_color="#333333")
+        p = self.pictograms
+        draw(fig, Segment, p, x0="x", y0=pictograms.TOP, x1="x_strip", y1="y_strip",
+             color="#999999", line_width=1)
+        for side, fill in (("upper", "#d9d9d9"), ("lower", "#bfbfbf")):
+            draw(fig, Patches, p, xs=f"xs_{side}", ys=f"ys_{side}", fill_color=fill,
+                 line_color="black", line_width=1.5)
+        draw(fig, Text, p, x="x", y=pictograms.LABEL_Y, text="label", text_align="center",
+             text_baseline="top", text_font_size="10pt", text_color="color")
         draw(fig, Scatter, s["spheres_period_marker"], x="x", y="y", size=11,
              color="#D55E00", line_color="black", level=FRAME_LEVEL)
         for name, fill in (("spheres_upper", "#d9d9d9"), ("spheres_lower", "#bfbfbf")):
@@ -264,6 +282,10 @@ class SpheresScene(Scene):
                  "apart ": (c.tau_end + PERIOD[1]) / 2}
         show(self.period_words, {"x": list(strip_x(np.array(list(words.values())))),
                                  "text": [w.strip() for w in words]})
+        drawn = pictograms.pictograms(c)
+        when = np.array(drawn["tau"])
+        show(self.pictograms, drawn | {"x_strip": list(strip_x(when)),
+                                       "y_strip": list(strip_y(when))})
 
     @staticmethod
     def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:

@@ -1,0 +1,82 @@
+"""The two spheres over a whole period, in headless Chromium: under the period strip the
+pictograms show the spheres apart outside the contact (a gap that follows tau0) and
+touching inside it.
+
+Runs against EXPLORER_URL when set, else against a `python -m app.serve` started here
+(fixtures in conftest.py).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from explorer_browser import column, open_explorer
+
+from app.contact import pictograms
+from app.contact.spheres import SpheresScene
+from core import Contact
+
+pytestmark = pytest.mark.browser
+
+#: JavaScript: CSS px per scene unit of the spheres' plot (its frame over its y range).
+JS_SCALE = """() => {
+  const v = __views((v) => v.model != null && v.model.type === "Figure"
+                    && v.model.title.text === "Two spheres in section")[0];
+  const y = v.model.y_range;
+  return v.frame.bbox.height / (y.end - y.start);
+}"""
+
+DRIVE = pictograms.PICTOGRAM_DRIVE * pictograms.RADIUS  # the pictograms' drawn H
+
+
+def drawn(page) -> dict[str, np.ndarray]:
+    """The pictograms' columns as the browser holds them (once they arrived)."""
+    page.wait_for_function("() => (__col('spheres_pictograms', 'tau') || []).length === 6",
+                           timeout=20_000)
+    return {k: np.array(column(page, "spheres_pictograms", k))
+            for k in ("tau", "yu", "yl", "xu", "xl", "r")}
+
+
+def check_period(d: dict[str, np.ndarray], tau0: float) -> np.ndarray:
+    """Assert the pictograms of a contact starting at tau0 show the spheres apart outside
+    it and touching inside it; their surfaces' separations."""
+    assert np.array_equal(d["xu"], d["xl"])  # one above the other
+    gap = (d["yu"] - d["yl"]) - 2 * d["r"]  # centres' distance less the radii
+    inside = (d["tau"] >= tau0) & (d["tau"] <= math.pi - tau0)
+    assert inside.sum() == 3 and (~inside).sum() == 3  # touch, contact, release
+    s0 = math.sin(tau0)
+    # the gap H (sin tau0 - sin tau) outside (eqs 3, 4), the approach inside (eq 8)
+    np.testing.assert_allclose(gap, DRIVE * (s0 - np.sin(d["tau"])), atol=1e-12)
+    assert np.all(gap[~inside] > 0)
+    assert np.all(gap[inside] <= 1e-12)
+    return gap
+
+
+def test_the_spheres_are_drawn_apart_outside_the_contact(browser, url) -> None:
+    """The scene drew the spheres only in contact: the gap of the intermittent contact
+    was never seen.  The default page (tau0 = pi/6): a gap of 1.5 H at tau = -pi/2."""
+    page, _ = open_explorer(browser, url)
+    d = drawn(page)
+    gap = check_period(d, math.pi / 6)
+    assert d["tau"][0] == pytest.approx(-math.pi / 2)
+    assert gap[0] == pytest.approx(1.5 * DRIVE)
+    assert gap[0] * page.evaluate(JS_SCALE) > 8  # px: the gap is seen
+    page.close()
+
+
+def test_the_gap_follows_tau0(browser, url) -> None:
+    """A preload (tau0 < 0, h < 0) gives a shorter gap and a longer contact."""
+    page, _ = open_explorer(browser, url + "?psi=2.414&tau0=-0.5&tau=1.0")
+    d = drawn(page)
+    gap = check_period(d, -0.5)
+    assert gap[0] == pytest.approx(DRIVE * (1 + math.sin(-0.5)))
+    assert 0 < gap[0] < 1.5 * DRIVE / 2
+    page.close()
+
+
+def test_the_pictograms_are_static_per_contact() -> None:
+    """They are no part of a frame: the player's frames hold the spheres, not them."""
+    assert "spheres_pictograms" not in SpheresScene.drawing(Contact(2.414, 0.5),
+                                                            np.array([1.0, 2.0]))
