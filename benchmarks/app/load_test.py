@@ -945,6 +945,9 @@ def main(argv: list[str] | None = None) -> int:
     if not levels or levels[0] < 1 or levels[-1] > args.max_sessions:
         p.error(f"levels must be between 1 and --max-sessions ({args.max_sessions})")
 
+    # SIGTERM stops the run as Ctrl-C does: the servers started here are stopped too
+    # (a background job of a non-interactive shell ignores SIGINT)
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
     started = None
     stack = None
     serving = placement = None
