@@ -91,6 +91,19 @@ ANIMATION_LABEL = "Animation"
 #: controls: the first screen shows them; the other scenes follow the controls.
 PHONE_ORDER_CSS = f"@media (max-width: {PHONE_WIDTH}px) {{ .animation {{ order: -1; }} }}"
 
+#: What a phone's first screen holds besides the spheres' plot (CSS px): the header (two
+#: lines), the card's title, and the row of Play and Step under the plot.
+PHONE_SPHERES_RIM = 175
+
+
+def phone_fit_css(fig) -> str:
+    """A stylesheet for a column holding `fig` (a plot scaled to its width, at the aspect
+    of its `width` and `height`): on a phone no wider than lets the plot and
+    `PHONE_SPHERES_RIM` px fit one screen's height (`100svh`), centred."""
+    aspect = fig.width / fig.height
+    return (f"@media (max-width: {PHONE_WIDTH}px) {{ :host {{ width: 100%; max-width: "
+            f"calc((100svh - {PHONE_SPHERES_RIM}px) * {aspect:.4f}); margin-inline: auto; }} }}")
+
 
 def heading() -> pn.pane.HTML:
     """The page's one <h1>, `TITLE`, in the header bar's type."""
@@ -238,7 +251,10 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
         play_key(contact),
     ]
     animation = card(
-        *described(pn.pane.Bokeh(contact.spheres.figure, sizing_mode="stretch_width"),
+        *described(pn.Column(pn.pane.Bokeh(contact.spheres.figure,
+                                           sizing_mode="stretch_width"),
+                             sizing_mode="stretch_width",
+                             stylesheets=[phone_fit_css(contact.spheres.figure)]),
                    "spheres", descriptions),
         pn.Row(ui.play_button, ui.step_button), ui.tau_slider, ui.speed_slider,
         title="The two spheres (Fig. 2)", flex="0 0 auto")
