@@ -1,12 +1,15 @@
 """The animation of one contact: Play, Pause, Step and Speed over `ContactView`.
 
-The browser plays the frames (`app.contact.player`); the server follows the same clock,
-progress = start + speed * elapsed / CONTACT_SECONDS, for the tau a pause, a speed change
-or a parameter change lands on.  A contact lasts CONTACT_SECONDS at speed 1.
+The browser plays the frames (`app.contact.player`).  Pause lands on the frame the
+browser showed at the press, which the press reports (`app.contact.play_button`); the
+server follows the same clock, progress = start + speed * elapsed / CONTACT_SECONDS, for
+the tau a speed change, a parameter change or a pause without a report (Alt + K, Step,
+Reset) lands on.  A contact lasts CONTACT_SECONDS at speed 1.
 """
 
 from __future__ import annotations
 
+import logging
 import time
 from typing import Any, Protocol
 
@@ -15,7 +18,10 @@ from panel.io import hold
 
 from app.contact.player import Player, frame_index, frame_taus
 from app.contact.state import ExplorerState
+from app.kit.widgets import finite
 from core import Contact
+
+log = logging.getLogger(__name__)
 
 CONTACT_SECONDS = 4.0  # one contact lasts this long at speed 1
 
@@ -41,6 +47,8 @@ class Animation(param.Parameterized):
         self.view = view
         #: (progress, time.monotonic(), speed) when the player last (re)started
         self.started = (0.0, 0.0, 1.0)
+        #: the tau (rad) the pause being made lands on; None: the clock's (`clock_tau`)
+        self.stop_at: float | None = None
         view.state.param.watch(self._on_playing, "playing")
         view.state.param.watch(self._on_speed, "speed")
 
@@ -76,6 +84,30 @@ class Animation(param.Parameterized):
         """The tau of the frame the browser's player shows at time `now` (monotonic s)."""
         return float(frame_taus(self.view.shown)[frame_index(self.clock_progress(now))])
 
+    def landing(self, shown: object) -> float:
+        """The tau (rad) a pause lands on: `shown`, the tau of the frame the browser showed
+        at the press, when it is a finite number within the contact on screen; else (a
+        report no page of this app sends, or none) the tau of the server's clock."""
+        c = self.view.shown
+        if finite(shown) and c.tau0 <= shown <= c.tau_end:
+            return float(shown)
+        if shown is not None:
+            log.debug("refused the frame's tau %.80r from the browser", shown)
+        return self.clock_tau()
+
+    def press(self, shown: object) -> None:
+        """Play / Pause pressed: play, or pause on the frame the browser showed at the
+        press, `shown` (its tau in rad, checked by `landing`)."""
+        state = self.view.state
+        if not state.playing:
+            state.playing = True
+            return
+        self.stop_at = self.landing(shown)
+        try:
+            state.playing = False
+        finally:
+            self.stop_at = None
+
     def start(self, progress: float) -> None:
         """(Re)start the browser's player at `progress` with the current contact and speed.
 
@@ -94,7 +126,8 @@ class Animation(param.Parameterized):
 
     def _on_playing(self, event: param.parameterized.Event) -> None:
         """Start the browser's player at the state's tau; a pause puts the state's tau
-        (which holds the tau the play last started from) on the player's frame."""
+        (which holds the tau the play last started from) on the player's frame: the
+        one reported by the press (`stop_at`), else the clock's."""
         view, playing = self.view, event.new
         view.controls.show_playing(playing)
         if playing:
@@ -102,5 +135,5 @@ class Animation(param.Parameterized):
             return
         with hold():  # one message: the player stops and the plots settle on its frame
             view.player.stop()
-            view.state.tau = self.clock_tau()
+            view.state.tau = self.clock_tau() if self.stop_at is None else self.stop_at
             view.show_state()  # (if the frame is the tau the play started from)

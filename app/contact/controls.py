@@ -22,6 +22,7 @@ import panel as pn
 
 from app.contact.notes import NOTES
 from app.contact.physical_inputs import PhysicalInputs
+from app.contact.play_button import PlayButton
 from app.contact.state import PRESETS, ExplorerState, parse_tau, parse_value
 from app.kit.style import FORMULA_CSS, NOTE_STYLE
 from app.kit.widgets import ExactSlider, LabelledCheckbox, LabelledSlider, bind, follow
@@ -54,11 +55,19 @@ LEFT_NOTE_STYLE = {**NOTE_STYLE, "opacity": "0.45"}
 DOWNLOADS = ("curves", "traction", "impulse")
 
 
+class Animates(Protocol):
+    """What Step and Play / Pause act on (`app.contact.animation.Animation`)."""
+
+    def step(self, seconds: float = 1 / 30) -> float: ...
+
+    def press(self, shown: object) -> None: ...
+
+
 class Steps(Protocol):
     """What the controls act on (`app.contact.view.ContactView`)."""
 
     shown: Contact
-    animation: object
+    animation: Animates
 
     def csv_file(self, key: str) -> io.StringIO: ...
 
@@ -91,8 +100,9 @@ class Controls:
             label="τ = ωt (rad): time", value=state.tau, start=c.tau0, end=c.tau_end,
             step=0.002, parse=lambda text: parse_tau(text, view.shown), name="tau")
         follow(self.tau_slider, state.param.tau)
-        self.play_button = pn.widgets.Button(label="▶ Play", color="success", width=110)
-        self.play_button.on_click(lambda _: setattr(state, "playing", not state.playing))
+        self.play_button = PlayButton(width=110)  # (the keyboard stays on it)
+        self.play_button.param.watch(
+            lambda _: view.animation.press(self.play_button.shown), "clicks")
         self.step_button = pn.widgets.Button(label="Step", width=100)
         self.step_button.on_click(lambda _: view.animation.step())
         self.speed_slider = LabelledSlider(label="Speed", value=state.speed, start=0.1,
@@ -154,8 +164,7 @@ class Controls:
 
     def show_playing(self, playing: bool) -> None:
         """Play/Pause's label and colour."""
-        self.play_button.param.update(label="‖ Pause" if playing else "▶ Play",
-                                      color="warning" if playing else "success")
+        self.play_button.show(playing)
 
     def sliders(self) -> list[ExactSlider]:
         """The sliders whose browser moves are taken as they arrive

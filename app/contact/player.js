@@ -1,7 +1,8 @@
 // The browser's animation player (app/contact/player.py): the body of a Bokeh CustomJS
 // whose args are the frames, the sources and texts it writes; see player.py's docstring.
-const st = window.__zharii_player ||
-  (window.__zharii_player = {raf: null, held: null, writing: false, watched: new Set()});
+// (`shown`: the tau of the frame on screen while playing, which Play / Pause reports)
+const st = window.__zharii_player || (window.__zharii_player =
+  {raf: null, held: null, writing: false, watched: new Set(), shown: null});
 if (st.raf !== null) { cancelAnimationFrame(st.raf); st.raf = null; }
 const get = (src) => (src.data instanceof Map ? Object.fromEntries(src.data) : src.data);
 // what this script changes while it plays: [model, property] (controls found on the
@@ -28,6 +29,7 @@ function put(m, a, v) {                        // shown here, not sent to the se
 const F = get(frames);
 const K = F.tau ? F.tau.length : 0;
 if (K === 0) {                                 // stopped: show what the server holds
+  st.shown = null;
   if (st.held !== null) {
     for (const [m, a, v] of st.held.values()) { put(m, a, v); }
     st.held = null;
@@ -71,6 +73,7 @@ function draw(k) {
     for (let i = 0; i < cols.length; i++) { M.x[i] = F.tau[k]; M.y[i] = F[cols[i]][k]; }
     markers[j].change.emit();
   }
+  st.shown = F.tau[k];
   put(caption, "text", F.caption[k]);
   if (entry) { put(entry, "value", F.tau_text[k]); }
   if (slider) { put(slider, "value", F.tau[k]); }

@@ -17,8 +17,10 @@ when it stops, so that after a pause the page shows exactly what the server hold
 every later change of the server's is drawn (Bokeh sends no property set to the value
 it holds, and the spheres scene sends no data its sources hold already: a phase badge
 paused in the phase the play started in is not sent again).  The
-server follows the same clock (progress = start + speed * elapsed / CONTACT_SECONDS)
-for the tau a pause, a speed change or a parameter change lands on.
+script keeps the tau of the frame on screen (`window.__zharii_player.shown`), which
+Play / Pause reports with a press (`app.contact.play_button`): a pause lands on that
+frame.  The server follows the same clock (progress = start + speed * elapsed /
+CONTACT_SECONDS) for the tau a speed change or a parameter change lands on.
 """
 
 from __future__ import annotations

@@ -1,0 +1,67 @@
+"""Play / Pause on the server: a pause adopts the frame the browser reports showing at the
+press, checked as any value from a browser (issue 23)."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+import app.contact.animation
+from app.contact.play_button import PAUSE_LABEL, PLAY_LABEL
+from app.contact.player import frame_index, frame_taus
+from app.contact.view import ContactView
+
+
+def press(view: ContactView, shown: object) -> None:
+    """What a press in the browser sends: the tau of the frame shown, then the click."""
+    button = view.controls.play_button
+    button.shown = shown
+    button.clicks += 1
+
+
+@pytest.fixture
+def playing(monkeypatch) -> tuple[ContactView, list[float]]:
+    """A contact view playing from tau0, on a clock the test moves (monotonic s)."""
+    view = ContactView()
+    now = [100.0]
+    monkeypatch.setattr(app.contact.animation.time, "monotonic", lambda: now[0])
+    view.state.tau = view.shown.tau0
+    press(view, None)
+    assert view.state.playing and view.controls.play_button.label == PAUSE_LABEL
+    now[0] += 1.53  # the server's clock: 91.8 frames into the contact
+    return view, now
+
+
+def test_a_pause_lands_on_the_frame_the_browser_showed(playing) -> None:
+    view, _ = playing
+    taus = frame_taus(view.shown)
+    shown = float(taus[57])  # (behind the server's clock: frame 91)
+    press(view, shown)
+    assert not view.state.playing and view.controls.play_button.label == PLAY_LABEL
+    assert view.state.tau == shown and view.controls.tau_slider.value == shown
+    assert len(view.player.frames.data) == 0
+
+
+@pytest.mark.parametrize("shown", [None, math.nan, math.inf, -math.inf, True, "1.2",
+                                   [1.2], 1e300, -1.0, 0.5235987755982988 - 1e-9,
+                                   2.6179938779914944 + 1e-9])
+def test_a_report_no_page_sends_falls_back_on_the_clock(playing, shown) -> None:
+    """Not a finite number within the contact (tau0 = pi/6 to 5 pi/6): refused, and the
+    pause lands on the frame of the server's clock."""
+    view, now = playing
+    clock = float(frame_taus(view.shown)[frame_index(1.53 / 4.0)])
+    assert view.animation.clock_tau(now[0]) == clock
+    press(view, shown)
+    assert not view.state.playing and view.state.tau == clock
+
+
+def test_the_ends_of_the_contact_are_frames(playing) -> None:
+    view, _ = playing
+    c = view.shown
+    press(view, c.tau_end)
+    assert view.state.tau == c.tau_end
+    press(view, None)  # plays again: the report of a press that plays is not used
+    assert view.state.playing
+    press(view, c.tau0)
+    assert not view.state.playing and view.state.tau == c.tau0
