@@ -685,7 +685,7 @@ def rgb_hex(color: str) -> tuple[float, ...]:
 
 #: JavaScript: the label of the Play / Pause button's model.
 JS_PLAY_LABEL = """() => [...Bokeh.documents[0].all_models].find(
-  (m) => m.type.endsWith("Button") && /Play|Pause/.test(m.label || "")).label"""
+  (m) => /Play|Pause/.test(m.label || "")).label"""
 
 
 def test_play_key_plays_and_pauses(browser, url) -> None:
