@@ -31,6 +31,7 @@ from app.kit.figures import (
     fit_range,
     lean,
     new_figure,
+    stamp,
     style_figure,
 )
 from app.kit.wire import inline
@@ -39,6 +40,13 @@ from core import Contact
 #: The landmark labels' offset below the frame's top (px), and tau1's, a line lower: it
 #: comes close to pi - tau0 for psi near 1 and to pi/2 for large psi.
 LANDMARK_DY, TAU1_DY = 2, 18
+
+
+def place_stamp(label, fig) -> None:
+    """Put `label` at the top left corner of `fig`'s ranges (unless it is there)."""
+    corner = (fig.x_range.start, fig.y_range.end)
+    if (label.x, label.y) != corner:
+        label.x, label.y = corner
 
 
 class CurveScene(Scene):
@@ -89,6 +97,7 @@ class CurveScene(Scene):
 
     def _make_figures(self) -> list:
         figs = []
+        self._stamps: list = []
         rows = {col: i for i, (col, *_) in enumerate(self.curves)}
         for k, ((title, y_label, cols), landmarks) in enumerate(
                 zip(self._panels(), self._landmarks, strict=True)):
@@ -120,6 +129,9 @@ class CurveScene(Scene):
             draw(fig, Segment, self.marker, x0="x", y0="lo", x1="x", y1="hi",
                  line_color="#666666", line_width=2, line_dash="dotted", level=DATA_LEVEL,
                  **view)
+            # psi, tau0 and tau, top left under the tau0 landmark (placed with the ranges)
+            self._stamps.append(stamp(fig, x_units="data", y_units="data",
+                                      text_baseline="top", x_offset=4, y_offset=-22))
             style_figure(fig)
             if k:
                 fig.title.text_font_size = "13pt"
@@ -152,6 +164,7 @@ class CurveScene(Scene):
                                                 self._landmarks, strict=True):
             y = fig.y_range
             fit_range(y, *(columns[col] for col in cols), pad=0.03, snap=True)
+            place_stamp(self._stamps[self.figures.index(fig)], fig)
             # the first and last labels inside the frame (at its edges, centred, they
             # would be cut)
             align = ["left", *["center"] * (len(marks) - 2), "right"]
@@ -271,6 +284,8 @@ class RadiiScene(CurveScene):
                     size=10, color="#0072B2")
         fig.text("x", "mid", text="label", source=self.bracket, x_offset=6,
                  text_baseline="middle", text_font_size="12pt", text_color="#0072B2")
+        stamp(fig, x=0.0, y=1.0, x_units="data", y_units="data", text_baseline="top",
+              x_offset=4, y_offset=-4)
         style_figure(fig)
         fig.legend.location = "bottom_center"
         return fig

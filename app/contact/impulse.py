@@ -16,6 +16,7 @@ from app.kit.figures import (
     DATA_LEVEL,
     Scene,
     new_figure,
+    stamp,
     style_figure,
 )
 from app.kit.wire import inline
@@ -73,6 +74,7 @@ class ImpulseScene(Scene):
                  text_font_style="bold", x_offset=6, y_offset=-6)
         fig.scatter("psi", "ratio", source=self.marker, size=14, color="#D55E00",
                     line_color="black", level=DATA_LEVEL)
+        stamp(fig)
         style_figure(fig)
         return fig
 

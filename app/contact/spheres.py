@@ -50,7 +50,15 @@ from bokeh.plotting import figure
 
 from app.contact import pictograms
 from app.contact.phases import STICK_COLOR, style
-from app.kit.figures import FRAME_LEVEL, Scene, draw, png_name, style_figure
+from app.kit.figures import (
+    FRAME_LEVEL,
+    Scene,
+    draw,
+    follow_clock,
+    png_name,
+    stamp,
+    style_figure,
+)
 from app.kit.wire import column, inline
 from core import Contact
 from core.clock import half_sines
@@ -172,7 +180,11 @@ def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
         "spheres_patch": patch,
         "spheres_forces": forces,
         "spheres_badge": badge,
-        "spheres_period_marker": {"x": strip_x(taus)[:, None], "y": strip_y(taus)[:, None]},
+        # (with the time and the contact: what every plot's stamp shows, `follow_clock`)
+        "spheres_period_marker": {"x": strip_x(taus)[:, None], "y": strip_y(taus)[:, None],
+                                  "tau": taus[:, None],
+                                  "psi": np.full((taus.size, 1), c.psi),
+                                  "tau0": np.full((taus.size, 1), c.tau0)},
     }
 
 
@@ -257,6 +269,11 @@ class SpheresScene(Scene):
                              name="spheres_rest_note", **ground)
         fig.add_layout(self.note)
         fig.add_layout(self.h_label)
+        # every plot's stamp follows the marker's time; this one top right, beside the
+        # upper sphere
+        follow_clock(s["spheres_period_marker"])
+        stamp(fig, sep="\n", x=1.57, y=2.07, x_units="data", y_units="data",
+                      text_align="right", text_baseline="top", level=FRAME_LEVEL)
         style_figure(fig)
         self.figure = fig
 

@@ -24,6 +24,7 @@ from app.kit.figures import (
     add_legend,
     draw,
     new_figure,
+    stamp,
     style_figure,
 )
 from app.kit.wire import inline
@@ -66,6 +67,8 @@ class TractionScene(Scene):
                                  background_fill_color="white", background_fill_alpha=0.8,
                                  name="traction_phase", level=FRAME_LEVEL)
         fig.add_layout(self.phase_label)
+        # psi, tau0 and tau, top left (placed with the caption)
+        self.stamp = stamp(fig, x_units="data", y_units="data", text_baseline="top")
         style_figure(fig)
         self.figure = fig
 
@@ -77,6 +80,7 @@ class TractionScene(Scene):
         # room above the largest pressure for the caption's two lines, below it for the phase
         self.figure.y_range.start, self.figure.y_range.end = -1.6 * p_max, 2.4 * p_max
         self.caption.x, self.caption.y = 1.08 * a_max, 2.35 * p_max
+        self.stamp.x, self.stamp.y = -1.08 * a_max, 2.35 * p_max
         self.phase_label.x, self.phase_label.y = 0.0, -1.55 * p_max  # bottom centre
 
     def profiles(self, c: Contact, taus: np.ndarray) -> dict[str, np.ndarray]:
@@ -134,6 +138,7 @@ class DiscScene(Scene):
              level=DATA_LEVEL)
         fig.x_range.start, fig.x_range.end = -1.15, 1.15
         fig.y_range.start, fig.y_range.end = -1.15, 1.15
+        stamp(fig, sep="\n")
         style_figure(fig)
         self.figure = fig
 

@@ -5,7 +5,8 @@ built once and only its data changes (`source.data = ...`), so that a slider mov
 numbers, not models.  Sources are named after their scene, so that tests and the browser
 find them with `get_model_by_name`.  The helpers here make every figure look alike
 (`new_figure`, `style_figure`, `draw`, `add_legend`) and fit its ranges to the data
-(`fit_range`, `nice_step`); `png_name` names a plot's PNG download.
+(`fit_range`, `nice_step`); `png_name` names a plot's PNG download and `stamp`
+draws in it the contact and the time it shows.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from bokeh.models import (
     CustomJS,
     Glyph,
     GlyphRenderer,
+    Label,
     Legend,
     LegendItem,
     Range1d,
@@ -185,6 +187,59 @@ def new_figure(title: str, x_label: str, y_label: str, **kwargs):
     for tool in fig.select(type=SaveTool):  # downloads the PNG without asking for a name
         tool.filename = png_name(title)
     return fig
+
+
+#: The source that holds the time tau shown and the contact's psi and tau0 (columns `tau`,
+#: `psi`, `tau0`): the spheres' period marker, which the browser's player moves frame by
+#: frame (`app.contact.spheres`).
+CLOCK = "spheres_period_marker"
+#: The tag of the plots' stamps (`stamp`); their second tag is the stamp's separator.
+STAMP_TAG = "png-stamp"
+
+#: JavaScript: every plot's stamp shows the psi, tau0 and tau of the clock (`CLOCK`), as
+#: the browser holds them (the player's frame while playing): written in the browser only
+#: (BokehJS's public `setv(..., {sync: false})`), and only where its text changes.
+STAMPS_JS = f"""
+const doc = cb_obj.document;
+const clock = doc == null ? null : doc.get_model_by_name({CLOCK!r});
+if (clock == null) {{ return; }}
+const col = (c) => (clock.data instanceof Map ? clock.data.get(c) : clock.data[c]);
+if (col("tau") == null || col("tau").length === 0) {{ return; }}
+const [psi, tau0, tau] = ["psi", "tau0", "tau"].map((c) => col(c)[0]);
+const parts = [`ψ = ${{Number(psi.toPrecision(6))}}`, `τ₀ = ${{tau0.toFixed(4)}} rad`,
+  `τ = ${{tau.toFixed(4)}} rad`];
+for (const m of doc.all_models) {{
+  if (m.tags.length === 2 && m.tags[0] === {STAMP_TAG!r}) {{
+    const text = parts.join(m.tags[1]);
+    if (m.text !== text) {{ m.setv({{text: text}}, {{sync: false}}); }}
+  }}
+}}
+"""
+
+
+def follow_clock(source: ColumnDataSource) -> None:
+    """Make every plot's stamp follow `source` (the clock) in the browser: whenever its
+    data change (a message from the server, or a frame the player copies into it)."""
+    source.js_on_change("change", CustomJS(code=STAMPS_JS))
+
+
+def stamp(fig, sep: str = "   ", **place) -> Label:
+    """A line drawn in `fig`'s frame naming the contact's psi, tau0 and the time tau
+    shown, so that a PNG saved from its toolbar stands alone: by default in the frame's
+    bottom left corner (`place` overrides the `Label`'s x, y, units, offsets and
+    alignment; `sep` comes between the three values: a newline stacks them).  It lies
+    under the data (Bokeh's underlay level, clipped to the frame: a curve shows over it;
+    `place` may set another `level`).  The
+    browser writes it (`STAMPS_JS`), when the plot is first laid out and whenever the
+    clock changes: the server sends nothing for it."""
+    where = {"x": 6, "y": 6, "x_units": "screen", "y_units": "screen",
+             "text_align": "left", "text_baseline": "bottom", "level": "underlay"} | place
+    label = Label(text="", text_font_size="9pt", text_color="#555555",
+                  tags=[STAMP_TAG, sep], background_fill_color="white",
+                  background_fill_alpha=0.8, **where)
+    fig.add_layout(label)
+    fig.js_on_change("inner_width", CustomJS(code=STAMPS_JS))  # (once laid out)
+    return label
 
 
 def png_name(title: str) -> str:

@@ -12,7 +12,7 @@ import io
 
 import numpy as np
 import pytest
-from explorer_browser import open_explorer, wait_until
+from explorer_browser import column, open_explorer, wait_until
 from PIL import Image
 
 pytestmark = pytest.mark.browser
@@ -79,4 +79,114 @@ def test_a_panned_curve_never_covers_the_title(browser, url, title, source) -> N
     # data were painted above the frame before the fix: compare the title's band
     changed = np.any(np.abs(after - before) > 40, axis=2)
     assert changed.mean() < 0.002, f"{changed.sum()} pixels of the title changed"
+    page.close()
+
+
+#: JavaScript: the page rectangle of plot `title`, whether its toolbar is shown, the
+#: rectangle of its save button, its canvas's and frame's boxes (CSS px, the frame within
+#: the canvas), and the text of its stamp.
+JS_PLOT = """(title) => {
+  const plot = __views((v) => v.model != null && v.model.type === "Figure"
+                       && v.model.title != null && v.model.title.text === title)[0];
+  const bar = __views((v) => v.model != null && v.model.type === "Toolbar"
+                      && v.parent != null && v.parent.parent === plot)[0];
+  const save = [...bar.children()].find((b) => b.model.tool.type === "SaveTool");
+  const rect = (el) => { const r = el.getBoundingClientRect();
+                         return [r.x, r.y, r.width, r.height]; };
+  const stamp = plot.model.center.find((m) => m.tags.includes("png-stamp"));
+  const f = plot.frame.bbox;
+  return {plot: rect(plot.el), shown: !bar.el.classList.contains("bk-hidden"),
+          save: rect(save.el), frame: [f.x, f.y, f.width, f.height], stamp: stamp.text};
+}"""
+
+#: JavaScript: show (true) or hide plot `title`'s stamp, in the browser only.
+JS_SHOW_STAMP = """([title, visible]) => {
+  const plot = __views((v) => v.model != null && v.model.type === "Figure"
+                       && v.model.title != null && v.model.title.text === title)[0];
+  plot.model.center.find((m) => m.tags.includes("png-stamp"))
+    .setv({visible: visible}, {sync: false});
+}"""
+
+
+def save_plot(page, title: str) -> np.ndarray:
+    """Hover the plot titled `title` (its toolbar hides otherwise), click its save tool;
+    the PNG's pixels (RGB)."""
+    page.evaluate("(t) => __views((v) => v.model != null && v.model.type === 'Figure'"
+                  " && v.model.title != null && v.model.title.text === t)[0]"
+                  ".el.scrollIntoView({block: 'center'})", title)
+    x, y, w, h = page.evaluate(JS_PLOT, title)["plot"]
+    page.mouse.move(x + w / 2, y + h / 2)
+    page.wait_for_function(f"() => ({JS_PLOT})({title!r}).shown", timeout=10_000)
+    bx, by, bw, bh = page.evaluate(JS_PLOT, title)["save"]
+    with page.expect_download(timeout=20_000) as info:
+        page.mouse.click(bx + bw / 2, by + bh / 2)
+    return np.asarray(Image.open(info.value.path()).convert("RGB")).astype(int)
+
+
+def move_psi(page, presses: int) -> float:
+    """Move psi's slider `presses` steps up by keyboard; psi once the server's answer
+    (the traction profile) arrived."""
+    before = column(page, "traction", "traction")
+    page.locator(".slider-psi input[type=range]").focus()
+    for _ in range(presses):
+        page.keyboard.press("ArrowRight")
+    wait_until(lambda: column(page, "traction", "traction") != before,
+               what="the traction profile to follow psi")
+    return page.evaluate("() => __psi()")
+
+
+def stamp_of(psi: float, tau0: float, tau: float, sep: str = "   ") -> str:
+    """A stamp's text (as app.kit.figures.STAMPS_JS writes it)."""
+    return sep.join([f"ψ = {float(f'{psi:.6g}'):g}", f"τ₀ = {tau0:.4f} rad",
+                     f"τ = {tau:.4f} rad"])
+
+
+STAMPED = [("Traction profile", "   "), ("Tangential force T / T₀", "   "),
+           ("Two spheres in section", "\n"), ("Contact disc (top view)", "\n")]
+
+
+def test_a_saved_png_names_psi_tau0_and_tau(browser, url) -> None:
+    """A PNG from a plot's save tool carried neither the parameters nor the time: after
+    a psi move each plot's stamp names the psi, tau0 and tau the page shows, and the PNG
+    has it (the same PNG without the stamp differs inside the frame)."""
+    page, console = open_explorer(browser, url)
+    psi = move_psi(page, 3)
+    assert psi != pytest.approx(2.414, abs=1e-3)  # moved away from the default page
+    tau0 = page.evaluate("() => __slider('tau0').value")
+    tau = page.evaluate("() => __slider('tau').value")
+    for title, sep in STAMPED:
+        wait_until(lambda t=title, s=sep: page.evaluate(JS_PLOT, t)["stamp"]
+                   == stamp_of(psi, tau0, tau, s), what=f"{title}'s stamp")
+    title = "Traction profile"
+    stamped = save_plot(page, title)
+    page.evaluate(JS_SHOW_STAMP, [title, False])
+    page.evaluate(PAINTED)
+    bare = save_plot(page, title)
+    page.evaluate(JS_SHOW_STAMP, [title, True])
+    rows, cols = np.nonzero(np.any(np.abs(stamped - bare) > 60, axis=2))
+    assert rows.size > 200, "the PNG shows no stamp"
+    fx, fy, fw, fh = page.evaluate(JS_PLOT, title)["frame"]
+    assert fx <= cols.min() and cols.max() <= fx + fw  # in the frame
+    assert fy <= rows.min() and rows.max() <= fy + fh
+    assert [m for m in console if "error" in m.lower()] == []
+    page.close()
+
+
+def test_the_stamps_follow_the_played_frames(browser, url) -> None:
+    """While playing, the browser's player shows another tau every frame and no message
+    reaches the server: each stamp names the tau of the frame shown."""
+    page, _ = open_explorer(browser, url)
+    start = page.evaluate("() => __slider('tau').value")
+    page.get_by_role("button", name="Play").first.click()
+    read = ("() => [__col('spheres_period_marker', 'tau')[0], __slider('tau0').value, "
+            "__psi(), ...__views((v) => v.model != null && v.model.type === 'Figure' && "
+            "['Traction profile', 'Tangential force T / T₀'].includes(v.model.title.text))"
+            ".map((v) => v.model.center.find((m) => m.tags.includes('png-stamp')).text)]")
+    seen = set()
+    for _ in range(3):
+        tau, tau0, psi, *stamps = wait_until(
+            lambda: (r := page.evaluate(read)) and r[0] != start and r[0] not in seen and r,
+            what="a new frame")
+        seen.add(tau)
+        assert stamps == [stamp_of(psi, tau0, tau)] * 2
     page.close()
