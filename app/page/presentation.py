@@ -1,19 +1,27 @@
 """The presentation view (`/main?view=present`): one screen for a class.
 
-In the header, the link to the full page (it keeps the parameters); below it a row of
-the controls a teacher uses in front of a class (preset, Play, Step, Reset, speed, the
-time); then, without scrolling, the two spheres with their phase badge, the traction
-profile with the contact disc beside it, and T(tau).  The same scenes and controls as
-the full page (`app.page.layout.page`): this module only arranges and sizes them.
+In the header, the link to the full page (it keeps the parameters) and the projector
+box (larger type, thicker lines); the controls a teacher uses in front of a class
+(preset, Play, Step, Reset, speed, the time); the two spheres with their phase badge,
+the traction profile, the contact disc, and below the traction profile the curve of the
+preset's figure: T(tau), or Fig. 4's radii, Fig. 8's impulse, Fig. 9's centre motion
+when such a preset is on.  The same scenes and controls as the full page
+(`app.page.layout.page`): this module only arranges and sizes them.
 
-The page is one screen high (`100vh`) and the scenes take the height the header and
-the controls leave: the plots grow with the screen (at 1280 x 720 the spheres are about
-390 x 580 px, at 1920 x 1080 650 x 940 px).  The sizes are CSS, worked out by the
-browser from the scenes' box (container query units: `100cqh` is its height, `100cqw`
-its width), so the plots have them at the first paint and follow a resized window
-without the server.  The spheres and the disc are drawn at equal scales on both axes:
-their boxes are sized so that their frames (the box less the title, toolbar and axes)
-have the aspect of their ranges.
+The arrangement is CSS (`app.page.present_css`), worked out by the browser from the
+window's size in CSS px, which browser zoom divides: so it follows zoom and a resized
+window without the server.  Three arrangements:
+
+* wide (at least `WIDE` CSS px): the controls in a row under the header, then the
+  spheres (the screen's height), the traction profile and the disc, and the curve
+  below them, all on one screen;
+* short (a zoomed laptop screen): the controls in a column at the left, the spheres,
+  the traction profile over the curve, on one screen; the disc below them;
+* narrow (a phone, or a zoom above 175 %): everything in one column, scrolled.
+
+No plot is narrower than `MIN_PLOT` (CSS px); the spheres and the disc are drawn at
+equal scales on both axes (their boxes are sized so that their frames have the aspect of
+their ranges).
 """
 
 from __future__ import annotations
@@ -21,30 +29,36 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 import panel as pn
+from bokeh.models import Button as BokehButton
+from bokeh.models import Column as BokehColumn
+from bokeh.models import CustomJS
 
 from app.contact.view import ContactView
-from app.kit.figures import place_legend
+from app.kit.a11y import Landmark
 from app.page import layout
+from app.page.present_css import (
+    CONTROLS_CSS,
+    HEADER_CSS,
+    PAGE_CSS,
+    Rims,
+    bottom_css,
+    scenes_css,
+)
+from app.page.projector import Projector
 
 #: The name of the view in the URL (`view=present`).
 VIEW = "present"
 
 #: The spheres' plot outside its frame (px, with the type of `app.kit.figures.style_figure`):
-#: (across, down): its borders across; its title, toolbar and borders down.
-SPHERES_RIM = (10, 37)
+#: (across, down): its borders across; its title and toolbar down (no borders there).
+SPHERES_RIM = (10, 32)
 #: The disc's plot outside its frame (px): (across, down): the y axis with its label and
 #: the borders across; the title, the x axis with its label and the borders down.
 DISC_RIM = (105, 87)
-#: The largest shares of the scenes' width the spheres and the disc take (they take less
-#: but on a narrow screen: their height sets their width).
-SPHERES_MAX_WIDTH = 0.34
-DISC_MAX_WIDTH = 0.3
-#: The share of the scenes' height of the traction profile and the disc (T(tau) takes
-#: the rest).
-TOP_SHARE = 0.53
-#: Space between the plots (px).
-GAP = 8
 BADGE_FONT = "26pt"
+#: The widths of Play, Step and Reset (px): side by side in the short arrangement's
+#: column of controls.
+BUTTONS = (96, 72, 72)
 
 #: The full page: this page's link without `view=present` (the parameters kept).
 FULL_PAGE_JS = """
@@ -54,20 +68,89 @@ window.location.search = q.toString();
 """
 
 
-def equal_scales_box(aspect: float, rim: tuple[int, int], height: str,
-                     max_width: str) -> dict[str, str]:
-    """CSS width and height of a plot whose frame (the box less its `rim` in px, across
-    and down) has width / height = `aspect`: as high as `height` allows, narrower than
-    `max_width` (CSS lengths)."""
-    across, down = rim
-    h = f"min({height}, calc(({max_width} - {across}px) / {aspect!r} + {down}px))"
-    return {"height": h, "width": f"calc(({h} - {down}px) * {aspect!r} + {across}px)",
-            "flex": "0 0 auto", "min-width": "0", "max-width": "none", "max-height": "none"}
-
-
 def aspect(fig) -> float:
     """Width over height of `fig`'s ranges (its data at equal scales)."""
     return (fig.x_range.end - fig.x_range.start) / (fig.y_range.end - fig.y_range.start)
+
+
+def panels(figure) -> list:
+    """The plots of a curve scene's `figure`: itself, or the panels of its column."""
+    return list(figure.children) if isinstance(figure, BokehColumn) else [figure]
+
+
+def stretched(fig, css_class: str) -> None:
+    """`fig` sized by the page's CSS: stretched to its box, no margin, class `css_class`."""
+    fig.sizing_mode, fig.margin = "stretch_both", 0
+    fig.min_width = fig.max_width = None
+    if css_class not in fig.css_classes:
+        fig.css_classes = [*fig.css_classes, css_class]
+
+
+class CurveSlot:
+    """The place under the traction profile: the curve scene of the open curve tab
+    (`ContactView.tabs`, which a preset of Figs. 4, 8 or 9 opens), T(tau) once the preset
+    is left."""
+
+    def __init__(self, contact: ContactView, projector: Projector) -> None:
+        self.contact, self.projector = contact, projector
+        self.pane = pn.Row(css_classes=["pp-bottom"], stylesheets=[bottom_css()], margin=0)
+        self.show()
+        contact.tabs.param.watch(lambda *_: self.show(), "active")
+        contact.state.param.watch(lambda *_: self.show(), "log_psi")
+        contact.state.param.watch(self._on_preset, "preset")
+
+    def _on_preset(self, event) -> None:
+        if not event.new:  # the preset left: T(tau) again
+            self.contact.tabs.active = 0
+
+    def figures(self) -> list:
+        """The plots of the open tab's scene."""
+        contact = self.contact
+        return panels(contact.tabbed[contact.tabs.active].figure)
+
+    def show(self) -> None:
+        """Put the open tab's plots in the slot (when they are not there yet)."""
+        figs = self.figures()
+        if [p.object for p in self.pane.objects] == figs:
+            return
+        for fig in figs:
+            stretched(fig, "pp-curve")
+            self.projector.style(fig)
+        self.pane.objects = [pn.pane.Bokeh(fig) for fig in figs]
+
+
+def header(projector: Projector) -> Landmark:
+    """The banner: the page's title, the projector box and the way to the full page."""
+    # (a Bokeh button: its click's script is its own model's, which Panel's links, not
+    # followed into a landmark, would not give it)
+    full = BokehButton(label="All scenes and controls", width=220)
+    full.js_on_event("button_click", CustomJS(code=FULL_PAGE_JS))
+    title = layout.heading()
+    title.css_classes = ["pp-title"]
+    return Landmark(
+        object=pn.FlexBox(title, projector.box, pn.pane.Bokeh(full), stylesheets=[HEADER_CSS],
+                          align_items="center", sizing_mode="stretch_width",
+                          styles={"background": layout.HEADER_STYLE["background"]}),
+        role="banner", css_classes=["pp-header"], margin=0)
+
+
+def controls(contact: ContactView) -> Landmark:
+    """The teacher's controls: preset, Play, Step, Reset, speed, time."""
+    ui = contact.controls
+    for widget in (ui.preset_select, ui.speed_slider):  # as wide as their columns
+        widget.param.update(width=None, sizing_mode="stretch_width")
+    for button, width in zip((ui.play_button, ui.step_button, ui.reset_button), BUTTONS,
+                             strict=True):
+        button.width = width
+    box = pn.FlexBox(
+        pn.Column(ui.preset_select, css_classes=["pp-preset"]),
+        pn.Row(ui.play_button, ui.step_button, ui.reset_button, css_classes=["pp-buttons"]),
+        pn.Column(ui.speed_slider, css_classes=["pp-speed"]),
+        pn.Column(ui.tau_slider, css_classes=["pp-tau"]),
+        layout.play_key(contact),
+        align_items="flex-end", sizing_mode="stretch_width", stylesheets=[CONTROLS_CSS])
+    return Landmark(object=box, role="complementary", label="Controls",
+                    css_classes=["pp-controls"], margin=0)
 
 
 def presentation(contact: ContactView, message: pn.viewable.Viewable,
@@ -76,56 +159,29 @@ def presentation(contact: ContactView, message: pn.viewable.Viewable,
     """The one-screen page of `contact`'s scenes and controls, with the page's banner
     `message`; `descriptions` and `announcer` as for `app.page.layout.page` (out of
     sight: they take no room), and the same play / pause key."""
-    ui = contact.controls
     spheres = contact.spheres.figure
     contact.spheres.badge.glyph.text_font_size = BADGE_FONT
-    traction, disc, force = contact.traction.figure, contact.disc.figure, contact.force.figure
-    for fig in (spheres, traction, disc, force):
-        fig.sizing_mode, fig.margin = "stretch_both", 0
-        fig.min_width = fig.max_width = None
+    traction, disc = contact.traction.figure, contact.disc.figure
+    for fig, name in ((spheres, "pp-spheres"), (traction, "pp-traction"), (disc, "pp-disc")):
+        stretched(fig, name)
     # equal scales: their frames are their boxes less a fixed rim, so not aligned with
     # their neighbours' frames (BokehJS aligns them by default: the traction plot's
     # legend row above its frame would push the disc's frame down, out of its aspect)
     spheres.frame_align = disc.frame_align = False
-    # T(tau) spans the screen's width but little of its height: its legend beside it
-    for legend in force.legend:
-        place_legend(force, legend, "right")
-    # the scenes' box is the size container: 100cqh is its height, 100cqw its width
-    spheres.styles = equal_scales_box(aspect(spheres), SPHERES_RIM, "100cqh",
-                                      f"{100 * SPHERES_MAX_WIDTH}cqw")
-    disc.styles = equal_scales_box(aspect(disc), DISC_RIM, f"{100 * TOP_SHARE}cqh",
-                                   f"{100 * DISC_MAX_WIDTH}cqw")
-    traction.styles = {"flex": "1 1 0", "min-width": "0", "height": "100%"}
-    force.styles = {"flex": "1 1 0", "min-height": "0", "width": "100%"}
-    force.margin = (GAP, 0, 0, 0)
-    full = pn.widgets.Button(label="All scenes and controls", width=220, align="center")
-    full.js_on_click(code=FULL_PAGE_JS)  # the same link without view=present
-    header = pn.Row(
-        layout.heading(),
-        full, styles={"background": layout.HEADER_STYLE["background"]},
-        sizing_mode="stretch_width")
-    for widget in (ui.preset_select, ui.speed_slider):  # as wide as their columns
-        widget.param.update(width=None, sizing_mode="stretch_width")
-    controls = pn.FlexBox(
-        pn.Column(ui.preset_select, styles={"flex": "1 1 340px"}),  # (the longest name)
-        pn.Row(ui.play_button, ui.step_button, ui.reset_button, align="end"),
-        pn.Column(ui.speed_slider, styles={"flex": "0 1 200px"}),
-        pn.Column(ui.tau_slider, styles={"flex": "2 1 320px"}),
-        align_items="flex-end", sizing_mode="stretch_width")
-    scenes = pn.Row(
-        pn.pane.Bokeh(spheres),
-        pn.Column(
-            pn.Row(pn.pane.Bokeh(traction), pn.pane.Bokeh(disc), sizing_mode="stretch_both",
-                   styles={"height": f"{100 * TOP_SHARE}cqh", "flex": "0 0 auto",
-                           "gap": f"{GAP}px"}),
-            pn.pane.Bokeh(force),
-            sizing_mode="stretch_both", styles={"min-width": "0"}),
-        sizing_mode="stretch_both",
-        styles={"flex": "1 1 0", "min-height": "0", "container-type": "size",
-                "gap": f"{GAP}px"})
-    unseen = [layout.play_key(contact), *(descriptions or {}).values(),
-              *([announcer] if announcer is not None else [])]
+    # no border above and below the spheres' frame (no axes there): the height it leaves
+    # keeps them `MIN_PLOT` wide on a zoomed laptop screen
+    spheres.min_border_top = spheres.min_border_bottom = 0
+    projector = Projector([spheres, traction, disc])
+    slot = CurveSlot(contact, projector)
+    rims = Rims(aspect(spheres), SPHERES_RIM, aspect(disc), DISC_RIM)
+    # (out of sight, out of the grid: `app.kit.style.VISUALLY_HIDDEN_CSS`)
+    unseen = [*(descriptions or {}).values(), *([announcer] if announcer is not None else [])]
+    scenes = pn.Column(
+        pn.pane.Bokeh(spheres), pn.pane.Bokeh(traction), pn.pane.Bokeh(disc), slot.pane,
+        *unseen, css_classes=["pp-scenes"], stylesheets=[scenes_css(rims)], margin=0)
+    main = Landmark(object=scenes, role="main", css_classes=["pp-main"], margin=0,
+                    stylesheets=["#region { height: 100%; }"])
+    message.css_classes = [*message.css_classes, "pp-message"]
     layout.use_css()
-    # one screen high: the scenes take what the header and the controls leave
-    return pn.Column(header, controls, message, scenes, *unseen, sizing_mode="stretch_both",
-                     styles={"height": "100vh"})
+    return pn.Column(header(projector), message, controls(contact), main,
+                     stylesheets=[PAGE_CSS], margin=0, sizing_mode="stretch_width")
