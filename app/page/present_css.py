@@ -2,8 +2,9 @@
 the window's size in CSS px (which browser zoom divides), so that the page reflows under
 zoom and on a resize without the server.
 
-* wide (`WIDE_QUERY` fails and `NARROW_QUERY` fails): the controls in a row, then the
-  spheres (the scenes' height), the traction profile and the disc, the curve under them;
+* wide (at least `WIDE`: neither `SHORT_QUERY` nor `NARROW_QUERY`): the controls in a
+  row, then the spheres (the scenes' height), the traction profile and the disc, the
+  curve under them;
 * short (`SHORT_QUERY`): the controls in a column at the left, then the spheres, the
   traction profile over the curve, and the disc below (scrolled to);
 * narrow (`NARROW_QUERY`): one column, scrolled.

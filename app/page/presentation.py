@@ -12,12 +12,13 @@ The arrangement is CSS (`app.page.present_css`), worked out by the browser from 
 window's size in CSS px, which browser zoom divides: so it follows zoom and a resized
 window without the server.  Three arrangements:
 
-* wide (at least `WIDE` CSS px): the controls in a row under the header, then the
-  spheres (the screen's height), the traction profile and the disc, and the curve
-  below them, all on one screen;
+* wide (at least `app.page.present_css.WIDE` CSS px): the controls in a row under the
+  header, then the spheres (the screen's height), the traction profile and the disc,
+  and the curve below them, all on one screen;
 * short (a zoomed laptop screen): the controls in a column at the left, the spheres,
   the traction profile over the curve, on one screen; the disc below them;
-* narrow (a phone, or a zoom above 175 %): everything in one column, scrolled.
+* narrow (a phone; a laptop screen zoomed to 175 % and more): everything in one
+  column, scrolled.
 
 No plot is narrower than `MIN_PLOT` (CSS px); the spheres and the disc are drawn at
 equal scales on both axes (their boxes are sized so that their frames have the aspect of
