@@ -105,6 +105,14 @@ def phone_fit_css(fig) -> str:
             f"calc((100svh - {PHONE_SPHERES_RIM}px) * {aspect:.4f}); margin-inline: auto; }} }}")
 
 
+def within_width(obj: pn.viewable.Viewable) -> pn.Column:
+    """`obj` in a column as wide as its place that scrolls sideways whatever of `obj` is
+    wider (a card of fixed-width plots or controls on a phone), so that the page never
+    does."""
+    return pn.Column(obj, sizing_mode="stretch_width",
+                     styles={"overflow-x": "auto", "min-width": "0"})
+
+
 def heading() -> pn.pane.HTML:
     """The page's one <h1>, `TITLE`, in the header bar's type."""
     return pn.pane.HTML(f"<h1>{html.escape(TITLE)}</h1>", styles=HEADER_STYLE,
@@ -274,7 +282,7 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
             card(*described(curve_tabs(contact), "curves", descriptions),
                  title="Curves over the contact", flex="1 1 100%"),
             sizing_mode="stretch_width", align_content="flex-start"),
-        *cards,
+        *map(within_width, cards),
     ]
     use_css()
     return pn.Column(

@@ -179,14 +179,19 @@ def test_first_screen_shows_the_spheres_and_play(browser, url) -> None:
 
 
 def test_nothing_is_wider_than_the_phone(browser, url) -> None:
-    """The whole page, the sidebar's cards (physical inputs, keyboard) open, fits 390 px:
-    no sideways scrolling."""
+    """The whole page fits 390 px, no sideways scrolling, also with the sidebar's cards
+    (physical inputs, keyboard) and Fig. 6 in full open: its three columns of plots
+    (660 px) made the page 666 px wide; they scroll sideways in their card now."""
     page, console = open_phone(browser, url)
     typeset(page)
     for title in ("Physical inputs", "Keyboard"):
         page.get_by_role("button", name=title).tap()
     wait_until(lambda: page.get_by_text("Use physical inputs").is_visible(),
                what="the physical inputs shown")
+    plots = page.locator(".bk-Canvas").count()
+    page.get_by_text("Fig. 6 in full").first.dispatch_event("click")  # (a tap's place moves)
+    wait_until(lambda: page.locator(".bk-Canvas").count() >= plots + 6,
+               what="the six plots of Fig. 6 in full")
     page.evaluate("() => document.fonts.ready.then(() => true)")
     assert page.evaluate("() => document.documentElement.scrollWidth") <= WIDTH
     assert errors(console) == []
