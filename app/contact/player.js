@@ -26,14 +26,26 @@ function put(m, a, v) {                        // shown here, not sent to the se
   st.writing = true;
   try { m.setv({[a]: v}, {sync: false}); } finally { st.writing = false; }
 }
-const F = get(frames);
-const K = F.tau ? F.tau.length : 0;
-if (K === 0) {                                 // stopped: show what the server holds
+const count = () => { const t = get(frames).tau; return t ? t.length : 0; };
+function stop() {                              // show what the server holds
   st.shown = null;
+  if (st.raf !== null) { cancelAnimationFrame(st.raf); st.raf = null; }
   if (st.held !== null) {
     for (const [m, a, v] of st.held.values()) { put(m, a, v); }
     st.held = null;
   }
+}
+// stopped at once when the frames are emptied, before the rest of the server's message
+// is applied (this script runs after it): a value that message sets to the one on
+// screen changes nothing in BokehJS, and is then shown, not the one held before it
+if (!st.watched.has(frames.id)) {
+  st.watched.add(frames.id);
+  frames.properties.data.change.connect(() => { if (count() === 0) { stop(); } });
+}
+const F = get(frames);
+const K = count();
+if (K === 0) {
+  stop();
   return;
 }
 if (st.held === null) { st.held = new Map(); }

@@ -13,7 +13,9 @@ script writes those texts with BokehJS's public `setv(..., {sync: false})`: the
 browser does not send 60 changes a second back to the server, which goes on holding
 the values it last sent.  The script remembers those values, and a copy of every source
 it writes frames into (also what the server sends while it plays), and puts them back
-when it stops, so that after a pause the page shows exactly what the server holds, and
+the moment the frames are emptied (before the rest of that message, which may set a
+value to the very one on screen: BokehJS then sees no change), so that after a pause
+the page shows exactly what the server holds, and
 every later change of the server's is drawn (Bokeh sends no property set to the value
 it holds, and the spheres scene sends no data its sources hold already: a phase badge
 paused in the phase the play started in is not sent again).  The
