@@ -12,6 +12,8 @@ import html
 
 import panel as pn
 
+from app.kit.div import HtmlDiv
+
 #: What the table is, for a screen reader (the card's title shows it on screen).
 CAPTION = "Derived quantities of the current contact"
 
@@ -46,10 +48,9 @@ class Readout(pn.viewable.Viewer):
         super().__init__()
         #: the (quantity, value) rows shown
         self.rows: list[tuple[str, str]] = []
-        self.pane = pn.pane.HTML(table_html([]), sizing_mode="stretch_width",
-                                 disable_math=True, stylesheets=[TABLE_CSS])
+        self.pane = HtmlDiv(table_html([]), stylesheets=[TABLE_CSS])
 
-    def __panel__(self) -> pn.pane.HTML:
+    def __panel__(self) -> HtmlDiv:
         return self.pane
 
     def show(self, rows: list[tuple[str, str]]) -> None:

@@ -32,6 +32,8 @@ from typing import ClassVar
 import panel as pn
 import param
 from bokeh.document import Document
+from bokeh.model import Model
+from bokeh.models import TextInput
 from panel.io import hold, unlocked
 from panel.io.state import set_curdoc
 
@@ -77,14 +79,22 @@ def finite(value: object) -> bool:
             and math.isfinite(value))
 
 
-def show_later(widget: param.Parameterized, value: object) -> None:
+def show_later(widget: param.Parameterized | Model, value: object) -> None:
     """Set `widget.value` once the browser's entry into it has been handled (Panel sends
     no change of a property back to the browser while handling the browser's change of
     it: `app.kit.jobs.later`)."""
-    later(pn.state.curdoc, partial(setattr, widget, "value", value))
+    later(pn.state.curdoc, partial(held_set, widget, "value", value))
 
 
-def typed_value(box: pn.widgets.TextInput, text: str, shown: str,
+def held_set(obj: param.Parameterized | Model, name: str, value: object) -> None:
+    """Set `obj.name` to `value` inside `panel.io.hold`: a Bokeh model changed outside
+    Panel's handling of a change (a next-tick callback, a watcher of another widget)
+    must be, or Bokeh finds its document unlocked."""
+    with hold():
+        setattr(obj, name, value)
+
+
+def typed_value(box: pn.widgets.TextInput | TextInput, text: str, shown: str,
                 parse: Callable[[str], float]) -> float | None:
     """What `text`, the new value of the text `box`, stands for, the box having shown
     `shown` (the text of the last good value): None when `text` is that text (the box was
@@ -181,6 +191,14 @@ class LabelledSlider(pn.reactive.ReactiveHTML):
         super().__init__(**params)
 
 
+#: The box of an `ExactSlider` (a Bokeh `TextInput`, which the page's CSS for Panel's
+#: components, `app.page.layout.CSS`, does not reach) drawn as those: the page's type
+#: size, the keyboard's ring, a disabled box greyed.
+ENTRY_CSS = (".bk-input { font-size: var(--bokeh-font-size, 16px); }"
+             ".bk-input:focus-visible { outline: 3px solid #1A5FB4; outline-offset: 2px; }"
+             ".bk-input[disabled] { background-color: #f3f3f3; opacity: 0.5; }")
+
+
 class ExactSlider(pn.viewable.Viewer):
     """A slider over [start, end] and a box taking whatever `parse` accepts.
 
@@ -211,15 +229,19 @@ class ExactSlider(pn.viewable.Viewer):
             sizing_mode="stretch_width", margin=(0, 8, 5, 8),
             css_classes=[f"slider-{name}"] if name else [],
             tags=[f"{name}-slider"] if name else [])
-        self._entry = pn.widgets.TextInput(label=label, value=self.text(value),
-                                           sizing_mode="stretch_width", margin=(0, 8),
-                                           tags=[f"{name}-entry"] if name else [])
+        # (Bokeh's own text input: written on every move of the slider, it costs the
+        # server a fiftieth of Panel's widget per change, `app.kit.div`)
+        self._entry = TextInput(title=label, value=self.text(value),
+                                sizing_mode="stretch_width", margin=(0, 8),
+                                stylesheets=[ENTRY_CSS],
+                                tags=[f"{name}-entry"] if name else [])
         self._message = pn.pane.HTML("", visible=False, styles=ERROR_STYLE,
                                      margin=(0, 8), sizing_mode="stretch_width",
                                      name=name and f"{name}_error")
         self._slider.param.watch(self._on_slider, "value")
-        self._entry.param.watch(self._on_entry, "value")
-        self._layout = pn.Column(self._entry, self._message, self._slider,
+        self._entry.on_change("value", self._on_entry)
+        self._layout = pn.Column(pn.pane.Bokeh(self._entry, sizing_mode="stretch_width",
+                                               margin=0), self._message, self._slider,
                                  sizing_mode="stretch_width")
 
     def __panel__(self) -> pn.Column:
@@ -279,9 +301,9 @@ class ExactSlider(pn.viewable.Viewer):
         with set_curdoc(self._doc), unlocked():
             self.value = self._due
 
-    def _on_entry(self, event: param.parameterized.Event) -> None:
+    def _on_entry(self, attr: str, old: str, new: str) -> None:
         try:
-            v = typed_value(self._entry, event.new, self.text(self.value), self._parse)
+            v = typed_value(self._entry, new, self.text(self.value), self._parse)
         except ValueError as err:  # (the box shows the last good value again)
             self.error = str(err)
             return
@@ -301,10 +323,11 @@ class ExactSlider(pn.viewable.Viewer):
         # own again once the value is back inside (`_show_range` follows)
         lo, hi = self._range
         start, end = min(lo, v), max(hi, v)
-        if (start, end) != (self.start, self.end):
-            self.param.update(start=start, end=end)
-        self._slider.value = v  # (Panel sends only what changed)
-        self._entry.value = self.text(v)
+        with hold():  # (the box is a Bokeh model: `held_set`)
+            if (start, end) != (self.start, self.end):
+                self.param.update(start=start, end=end)
+            self._slider.value = v  # (Panel sends only what changed)
+            self._entry.value = self.text(v)
 
     def set_range(self, start: float, end: float, value: float) -> None:
         """Give the slider a new range of its own and the value `value` (in it)."""
@@ -321,7 +344,8 @@ class ExactSlider(pn.viewable.Viewer):
 
     @param.depends("disabled", watch=True)
     def _show_disabled(self) -> None:
-        self._slider.disabled = self._entry.disabled = self.disabled
+        with hold():
+            self._slider.disabled = self._entry.disabled = self.disabled
 
 
 class LabelledCheckbox(pn.viewable.Viewer):

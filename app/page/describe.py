@@ -12,11 +12,11 @@ from __future__ import annotations
 import html
 
 import numpy as np
-import panel as pn
 
 from app.contact.state import ExplorerState
 from app.contact.view import TAB_TITLES, ContactView
 from app.kit.a11y import LiveText
+from app.kit.div import HtmlDiv
 from app.kit.style import VISUALLY_HIDDEN_CSS
 from core import PHASE_NAMES, Contact, Phase
 
@@ -81,6 +81,11 @@ def description_html(name: str, text: str) -> str:
             f'<p id="d">{html.escape(text)}</p></div>')
 
 
+#: The description's text clipped to nothing too (the Div's own box holds it at its
+#: natural width, beyond the 1 px of its hidden host).
+HIDDEN_TEXT_CSS = "p { margin: 0; overflow: hidden; clip-path: inset(50%); white-space: nowrap; }"
+
+
 class Describer:
     """The plots' descriptions and the live region of one page."""
 
@@ -88,8 +93,8 @@ class Describer:
         self.contact, self.state = contact, state
         #: each plot's name and description (by `PLOT_NAMES`' keys)
         self.descriptions = {
-            key: pn.pane.HTML("", stylesheets=[VISUALLY_HIDDEN_CSS], disable_math=True,
-                              margin=0, name=f"{key}_description")
+            key: HtmlDiv(stylesheets=[VISUALLY_HIDDEN_CSS, HIDDEN_TEXT_CSS],
+                         name=f"{key}_description")
             for key in PLOT_NAMES}
         #: the polite live region announcing a change of phase
         self.announcer = LiveText(name="phase_announcement")
@@ -111,10 +116,7 @@ class Describer:
         if tab not in range(len(TAB_TITLES)):
             return
         for key, text in descriptions(c, tau, tab).items():
-            pane = self.descriptions[key]
-            new = description_html(PLOT_NAMES[key], text)
-            if pane.object != new:
-                pane.object = new
+            self.descriptions[key].object = description_html(PLOT_NAMES[key], text)
         phase = int(c.phase(tau))
         if phase != self._announced and phase != Phase.NO_CONTACT:
             self._announced = phase

@@ -231,11 +231,15 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
     slider = doc.select_one({"tags": "psi-slider"}).data  # a LabelledSlider's values
     # (the drive angle's slider follows psi: theta = arctan(psi tan theta0))
     theta = doc.select_one({"tags": "theta-slider"}).data
-    assert changed == data | {("Label", "traction_caption", "text"), ("HTML", None, "text"),
-                              ("Label", "spheres_rest_note", "text"),
-                              (type(slider).__name__, slider.name, "value"),
-                              (type(theta).__name__, theta.name, "value"),
-                              ("TextInput", None, "value"), ("TextInput", None, "value_input")}
+    # the texts: the derived quantities' table and the four plots' descriptions for
+    # screen readers (`HtmlDiv`s, Bokeh Divs: their text is all they send)
+    texts = {("Div", None, "text")} | {("Div", f"{k}_description", "text")
+                                       for k in ("spheres", "traction", "disc", "curves")}
+    assert changed == data | texts | {("Label", "traction_caption", "text"),
+                                      ("Label", "spheres_rest_note", "text"),
+                                      (type(slider).__name__, slider.name, "value"),
+                                      (type(theta).__name__, theta.name, "value"),
+                                      ("TextInput", None, "value")}
     assert ex.state.psi == ex.contact.controls.psi_slider.value == 2.51
     events.clear()
     assert doc.get_model_by_name("radii") is None  # a closed tab's plot is not in the page
