@@ -171,6 +171,10 @@ def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
         "angle": np.stack([np.zeros_like(T), np.where(T < 0, math.pi / 2, -math.pi / 2)],
                           axis=1),
         "label": np.where(shown, labels, ""),
+        # the time and the contact, what every plot's stamp shows (`follow_clock`: this
+        # source changes with each of them, on a slider move as on a played frame)
+        "tau": np.stack([taus, taus], axis=1),
+        "psi": np.full((taus.size, 2), c.psi), "tau0": np.full((taus.size, 2), c.tau0),
     }
     badge = {"text": np.array([[look.name] for look in looks], dtype=object),
              "color": np.array([[look.color] for look in looks], dtype=object)}
@@ -180,11 +184,7 @@ def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
         "spheres_patch": patch,
         "spheres_forces": forces,
         "spheres_badge": badge,
-        # (with the time and the contact: what every plot's stamp shows, `follow_clock`)
-        "spheres_period_marker": {"x": strip_x(taus)[:, None], "y": strip_y(taus)[:, None],
-                                  "tau": taus[:, None],
-                                  "psi": np.full((taus.size, 1), c.psi),
-                                  "tau0": np.full((taus.size, 1), c.tau0)},
+        "spheres_period_marker": {"x": strip_x(taus)[:, None], "y": strip_y(taus)[:, None]},
     }
 
 
@@ -269,9 +269,9 @@ class SpheresScene(Scene):
                              name="spheres_rest_note", **ground)
         fig.add_layout(self.note)
         fig.add_layout(self.h_label)
-        # every plot's stamp follows the marker's time; this one top right, beside the
+        # every plot's stamp follows the forces' time; this one top right, beside the
         # upper sphere
-        follow_clock(s["spheres_period_marker"])
+        follow_clock(s["spheres_forces"])
         stamp(fig, sep="\n", x=1.57, y=2.07, x_units="data", y_units="data",
                       text_align="right", text_baseline="top", level=FRAME_LEVEL)
         style_figure(fig)

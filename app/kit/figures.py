@@ -190,9 +190,9 @@ def new_figure(title: str, x_label: str, y_label: str, **kwargs):
 
 
 #: The source that holds the time tau shown and the contact's psi and tau0 (columns `tau`,
-#: `psi`, `tau0`): the spheres' period marker, which the browser's player moves frame by
-#: frame (`app.contact.spheres`).
-CLOCK = "spheres_period_marker"
+#: `psi`, `tau0`): the spheres' forces, which change with each of them and which the
+#: browser's player moves frame by frame (`app.contact.spheres`).
+CLOCK = "spheres_forces"
 #: The tag of the plots' stamps (`stamp`); their second tag is the stamp's separator.
 STAMP_TAG = "png-stamp"
 

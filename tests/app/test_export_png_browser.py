@@ -178,7 +178,7 @@ def test_the_stamps_follow_the_played_frames(browser, url) -> None:
     page, _ = open_explorer(browser, url)
     start = page.evaluate("() => __slider('tau').value")
     page.get_by_role("button", name="Play").first.click()
-    read = ("() => [__col('spheres_period_marker', 'tau')[0], __slider('tau0').value, "
+    read = ("() => [__col('spheres_forces', 'tau')[0], __slider('tau0').value, "
             "__psi(), ...__views((v) => v.model != null && v.model.type === 'Figure' && "
             "['Traction profile', 'Tangential force T / T₀'].includes(v.model.title.text))"
             ".map((v) => v.model.center.find((m) => m.tags.includes('png-stamp')).text)]")
