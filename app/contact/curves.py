@@ -14,6 +14,7 @@ from bokeh.models import (
     ColumnDataSource,
     GlyphRenderer,
     IndexFilter,
+    Label,
     Line,
     Range1d,
     Scatter,
@@ -42,7 +43,7 @@ from core import Contact
 LANDMARK_DY, TAU1_DY = 2, 18
 
 
-def place_stamp(label, fig) -> None:
+def place_stamp(label: Label, fig) -> None:
     """Put `label` at the top left corner of `fig`'s ranges (unless it is there)."""
     corner = (fig.x_range.start, fig.y_range.end)
     if (label.x, label.y) != corner:
@@ -97,7 +98,7 @@ class CurveScene(Scene):
 
     def _make_figures(self) -> list:
         figs = []
-        self._stamps: list = []
+        self._stamps: list[Label] = []
         rows = {col: i for i, (col, *_) in enumerate(self.curves)}
         for k, ((title, y_label, cols), landmarks) in enumerate(
                 zip(self._panels(), self._landmarks, strict=True)):
