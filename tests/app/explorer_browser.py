@@ -86,9 +86,10 @@ def wait_for_http(url: str, timeout: float = 60.0) -> None:
 
 
 @contextlib.contextmanager
-def explorer_server(root: Path | None = None) -> Iterator[str]:
+def explorer_server(root: Path | None = None, timeout: float = 60.0) -> Iterator[str]:
     """Yield the explorer's URL: EXPLORER_URL if set, else a fresh `python -m app.serve`
-    of the checkout at `root` (default: this one)."""
+    of the checkout at `root` (default: this one), which must answer within `timeout` s
+    (a fresh checkout compiles the kernels first)."""
     url = os.environ.get("EXPLORER_URL")
     if url and root is None:
         yield url.rstrip("/")
@@ -99,7 +100,7 @@ def explorer_server(root: Path | None = None) -> Iterator[str]:
     proc = subprocess.Popen(cmd, cwd=root or ROOT, stdout=log, stderr=subprocess.STDOUT)
     try:
         try:
-            wait_for_http(f"http://127.0.0.1:{port}/liveness")
+            wait_for_http(f"http://127.0.0.1:{port}/liveness", timeout)
         except TimeoutError as err:
             log.seek(0)
             raise TimeoutError(f"{err}; the server said:\n{log.read()[-3000:]}") from err

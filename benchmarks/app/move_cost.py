@@ -1,0 +1,193 @@
+"""What one psi move costs the explorer server: CPU per move as closed-form contacts.
+
+Serves the working tree (or, with ``--revs A B``, the git revisions A and B, each a
+worktree in a temporary directory) as one process each, opens one session on each
+(the load test's simulated browser tab, `load_test.Session`) and moves its psi slider
+``--moves`` times, one move every ``--interval`` s (so that the page's debounced
+writes, such as the URL 0.3 s after a burst, land between moves as they do for a
+visitor), alternating between the arms move by move: both see the same machine load.
+
+Reported per arm: the server process's CPU time per move (its CPU over the moves, less
+its idle CPU over as long, measured before), as a multiple of one closed-form contact
+(``core.numerics.metrics.closed_form_time(Contact, 0.4, pi/6)``, the yardstick of
+benchmarks/app/app_latency.py and page_load.py, measured before and after the run); the
+websocket messages (PATCH-DOC) the client got per move and their bytes; the median time
+from sending a move to the traction data's arrival.
+
+    .venv/bin/python benchmarks/app/move_cost.py
+    .venv/bin/python benchmarks/app/move_cost.py --revs 1c3d2f1 HEAD --moves 150
+
+Loopback only; every request has a timeout.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import contextlib
+import json
+import statistics
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path[:0] = [str(ROOT), str(ROOT / "benchmarks" / "app"), str(ROOT / "tests" / "app")]
+
+from app_latency import worktree  # noqa: E402
+from explorer_browser import explorer_server  # noqa: E402
+from load_test import Session, Stats  # noqa: E402
+from soak import yardstick  # noqa: E402
+from tornado.httpclient import AsyncHTTPClient  # noqa: E402
+
+
+def server_pid(url: str) -> int:
+    """The pid of the process listening on `url`'s port."""
+    import psutil
+
+    port = int(url.split(":")[2].split("/")[0])
+    for c in psutil.net_connections("tcp"):
+        if c.laddr and c.laddr.port == port and c.status == "LISTEN" and c.pid:
+            return c.pid
+    raise LookupError(f"no process listens on port {port}")
+
+
+def cpu_s(pid: int) -> float:
+    """CPU seconds (user + system) of process `pid` so far."""
+    import psutil
+
+    t = psutil.Process(pid).cpu_times()
+    return t.user + t.system
+
+
+class Arm:
+    """One served revision, its session and its counts."""
+
+    def __init__(self, name: str, url: str) -> None:
+        self.name, self.url, self.pid = name, url, server_pid(url)
+        self.stats = Stats()
+        self.bytes = 0
+        self.cpu = 0.0
+        self.idle_cpu_per_s = 0.0
+
+    async def open(self, http: AsyncHTTPClient) -> None:
+        self.session = Session(self.url, http, 10.0, None)
+        await self.session.open()
+        self.session.patches = []
+
+    async def move(self) -> None:
+        """One move, waiting (at most 10 s) for the traction data to come back."""
+        s = self.session
+        s.stats = self.stats
+        await s.move()
+        deadline = time.perf_counter() + 10
+        while s.pending and time.perf_counter() < deadline:
+            await asyncio.sleep(0.002)
+
+
+def tree_cpu_s(pid: int) -> float:
+    """CPU seconds so far of process `pid` and its children (a fresh server compiles
+    kernels in a child process, then loads them)."""
+    import psutil
+
+    p = psutil.Process(pid)
+    total = 0.0
+    for q in [p, *p.children(recursive=True)]:
+        try:
+            t = q.cpu_times()
+            total += t.user + t.system
+        except psutil.NoSuchProcess:
+            pass
+    return total
+
+
+async def settle(pid: int, busy: float = 0.03, quiet: int = 3, timeout: float = 900.0) -> None:
+    """Wait until process `pid` and its children have used less than `busy` of a CPU in
+    each of `quiet` seconds in a row (a fresh server loads or compiles kernels)."""
+    deadline, calm = time.perf_counter() + timeout, 0
+    while calm < quiet and time.perf_counter() < deadline:
+        c0 = tree_cpu_s(pid)
+        await asyncio.sleep(1.0)
+        calm = calm + 1 if tree_cpu_s(pid) - c0 < busy else 0
+
+
+async def run(arms: list[Arm], moves: int, interval: float, warmup: int) -> None:
+    for a in arms:
+        await settle(a.pid)
+    http = AsyncHTTPClient()
+    for a in arms:
+        await a.open(http)
+    await asyncio.sleep(2.0)
+    for _ in range(warmup):  # numba, caches, the first patches
+        for a in arms:
+            await a.move()
+            await asyncio.sleep(interval)
+    for a in arms:
+        await settle(a.pid)
+    idle = 5.0
+    c0 = {a.name: cpu_s(a.pid) for a in arms}
+    await asyncio.sleep(idle)
+    for a in arms:
+        a.idle_cpu_per_s = (cpu_s(a.pid) - c0[a.name]) / idle
+        a.stats = Stats()
+        a.session.patches = []
+    t0 = time.perf_counter()
+    c0 = {a.name: cpu_s(a.pid) for a in arms}
+    for i in range(moves):
+        for a in arms if i % 2 == 0 else reversed(arms):
+            await a.move()
+            await asyncio.sleep(interval / len(arms))
+    await asyncio.sleep(1.0)  # the last move's deferred writes
+    wall = time.perf_counter() - t0
+    for a in arms:
+        a.cpu = cpu_s(a.pid) - c0[a.name] - a.idle_cpu_per_s * wall
+        a.bytes = sum(len(p) for p in a.session.patches)
+        a.messages = len(a.session.patches)
+        a.session.close()
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--moves", type=int, default=100)
+    ap.add_argument("--interval", type=float, default=0.4, help="s between one arm's moves")
+    ap.add_argument("--warmup", type=int, default=10)
+    ap.add_argument("--revs", nargs=2, metavar=("A", "B"))
+    ap.add_argument("--json", type=Path, help="also write the figures here")
+    args = ap.parse_args()
+    before = yardstick()
+    with contextlib.ExitStack() as stack:
+        roots = ({rev: stack.enter_context(worktree(rev)) for rev in args.revs} if args.revs
+                 else {"working tree": None})
+        arms = [Arm(k, stack.enter_context(explorer_server(root, timeout=900)))
+                for k, root in roots.items()]
+        asyncio.run(run(arms, args.moves, args.interval, args.warmup))
+    after = yardstick()
+    unit = statistics.mean((before, after))
+    out = {"yardstick_us": [round(before, 2), round(after, 2)], "moves": args.moves, "arms": {}}
+    print(f"{args.moves} psi moves per arm, one every {args.interval:g} s, arms alternating; "
+          f"yardstick (one closed-form contact) {before:.1f} us before, {after:.1f} us after")
+    for a in arms:
+        per_move = a.cpu / args.moves
+        lat = statistics.median(a.stats.latencies) * 1e3 if a.stats.latencies else float("nan")
+        row = {"cpu_ms_per_move": round(per_move * 1e3, 2),
+               "closed_form_contacts_per_move": round(per_move * 1e6 / unit),
+               "messages_per_move": round(a.messages / args.moves, 2),
+               "bytes_per_move": round(a.bytes / args.moves),
+               "median_reply_ms": round(lat, 1), "errors": a.stats.errors,
+               "idle_cpu_ms_per_s": round(a.idle_cpu_per_s * 1e3, 2)}
+        out["arms"][a.name] = row
+        print(f"  {a.name}: {row['cpu_ms_per_move']} ms CPU per move = "
+              f"{row['closed_form_contacts_per_move']} closed-form contacts; "
+              f"{row['messages_per_move']} messages, {row['bytes_per_move']} bytes per move; "
+              f"reply median {row['median_reply_ms']} ms; errors {row['errors']}; "
+              f"idle {row['idle_cpu_ms_per_s']} ms of CPU per s")
+    if len(arms) == 2:
+        a, b = (out["arms"][x.name]["cpu_ms_per_move"] for x in arms)
+        print(f"  {arms[1].name} / {arms[0].name}: {b / a:.2f} of the CPU per move")
+    if args.json:
+        args.json.write_text(json.dumps(out, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
