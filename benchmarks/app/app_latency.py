@@ -228,7 +228,8 @@ def main() -> None:
     with contextlib.ExitStack() as stack:
         arms = ({rev: stack.enter_context(worktree(rev)) for rev in args.revs} if args.revs
                 else {"working tree": None})
-        urls = {k: stack.enter_context(explorer_server(root)) for k, root in arms.items()}
+        urls = {k: stack.enter_context(explorer_server(root, timeout=900))
+                for k, root in arms.items()}
         rows: dict[str, list] = {k: [] for k in arms}
         for i in range(args.runs):
             order = list(arms) if i % 2 == 0 else list(reversed(arms))
