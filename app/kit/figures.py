@@ -198,21 +198,26 @@ STAMP_TAG = "png-stamp"
 
 #: JavaScript: every plot's stamp shows the psi, tau0 and tau of the clock (`CLOCK`), as
 #: the browser holds them (the player's frame while playing): written in the browser only
-#: (BokehJS's public `setv(..., {sync: false})`), and only where its text changes.
+#: (BokehJS's public `setv(..., {sync: false})`), and only where its text changes.  The
+#: stamps are looked up among the document's models when a plot is laid out (`scan`, a
+#: plot built later brings its own) and kept per document, not on every frame.
 STAMPS_JS = f"""
 const doc = cb_obj.document;
-const clock = doc == null ? null : doc.get_model_by_name({CLOCK!r});
-if (clock == null) {{ return; }}
+if (doc == null) {{ return; }}
+const kept = window.__zharii_stamps || (window.__zharii_stamps = new WeakMap());
+if (scan || !kept.has(doc)) {{
+  kept.set(doc, [...doc.all_models].filter(
+    (m) => m.tags.length === 2 && m.tags[0] === {STAMP_TAG!r}));
+}}
+const clock = doc.get_model_by_name({CLOCK!r});
 const col = (c) => (clock.data instanceof Map ? clock.data.get(c) : clock.data[c]);
-if (col("tau") == null || col("tau").length === 0) {{ return; }}
+if (clock == null || col("tau") == null || col("tau").length === 0) {{ return; }}
 const [psi, tau0, tau] = ["psi", "tau0", "tau"].map((c) => col(c)[0]);
 const parts = [`ψ = ${{Number(psi.toPrecision(6))}}`, `τ₀ = ${{tau0.toFixed(4)}} rad`,
   `τ = ${{tau.toFixed(4)}} rad`];
-for (const m of doc.all_models) {{
-  if (m.tags.length === 2 && m.tags[0] === {STAMP_TAG!r}) {{
-    const text = parts.join(m.tags[1]);
-    if (m.text !== text) {{ m.setv({{text: text}}, {{sync: false}}); }}
-  }}
+for (const m of kept.get(doc)) {{
+  const text = parts.join(m.tags[1]);
+  if (m.text !== text) {{ m.setv({{text: text}}, {{sync: false}}); }}
 }}
 """
 
@@ -220,7 +225,7 @@ for (const m of doc.all_models) {{
 def follow_clock(source: ColumnDataSource) -> None:
     """Make every plot's stamp follow `source` (the clock) in the browser: whenever its
     data change (a message from the server, or a frame the player copies into it)."""
-    source.js_on_change("change", CustomJS(code=STAMPS_JS))
+    source.js_on_change("change", CustomJS(code=STAMPS_JS, args={"scan": False}))
 
 
 def stamp(fig, sep: str = "   ", **place) -> Label:
@@ -238,7 +243,7 @@ def stamp(fig, sep: str = "   ", **place) -> Label:
                   tags=[STAMP_TAG, sep], background_fill_color="white",
                   background_fill_alpha=0.8, **where)
     fig.add_layout(label)
-    fig.js_on_change("inner_width", CustomJS(code=STAMPS_JS))  # (once laid out)
+    fig.js_on_change("inner_width", CustomJS(code=STAMPS_JS, args={"scan": True}))
     return label
 
 
