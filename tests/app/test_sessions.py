@@ -157,7 +157,7 @@ def test_a_slider_move_comes_back_as_one_message(served) -> None:
     sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
     from load_test import Session
 
-    async def move() -> list[str]:
+    async def move() -> tuple[list[str], float]:
         session = Session(url, AsyncHTTPClient(), 10.0, None)
         await session.open()
         session._reader.cancel()  # read the replies here instead
@@ -173,13 +173,14 @@ def test_a_slider_move_comes_back_as_one_message(served) -> None:
                 header, content = await asyncio.wait_for(session._read(), 10)
                 if header["msgtype"] == "PATCH-DOC":
                     patches.append(content)
-            return patches
+            return patches, session.value
         finally:
             session.close()
 
-    patches = asyncio.run(move())
+    patches, psi = asyncio.run(move())
     assert len(patches) == 1, f"a move came back as {len(patches)} messages"
-    assert '"attr":"value_input"' in patches[0]  # the psi box's text, with the plots
+    # the psi box's text (a string, where the slider's value is a number), with the plots
+    assert f'"attr":"value","new":"{psi:.6g}"' in patches[0]
 
 
 def test_a_session_built_for_its_websocket_alone_has_the_servers_stylesheets(served) -> None:
