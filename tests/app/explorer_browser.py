@@ -163,7 +163,12 @@ def column(page, name: str, col: str) -> list[float] | None:
 
 def open_explorer(browser, url: str, width: int = 1600, height: int = 1400):
     """A page showing the explorer at `url` (after its data arrived) and its console log."""
-    page = browser.new_page(viewport={"width": width, "height": height})
+    return load(browser.new_page(viewport={"width": width, "height": height}), url)
+
+
+def load(page, url: str):
+    """`page` showing the explorer at `url` (after its data arrived), and its console log
+    from then on."""
     console: list[str] = []
     page.on("console", lambda m: console.append(f"{m.type}: {m.text}"))
     page.on("pageerror", lambda e: console.append(f"pageerror: {e}"))

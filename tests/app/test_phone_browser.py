@@ -5,7 +5,7 @@ the first screen shows the two spheres and Play, nothing is wider than the phone
 from __future__ import annotations
 
 import pytest
-from explorer_browser import JS_HELPERS, JS_READY, wait_until
+from explorer_browser import load, wait_until
 from test_browser import ARTIFACTS, errors, typeset
 
 from app.page.layout import ANIMATION_LABEL
@@ -49,14 +49,7 @@ def open_phone(browser, url: str, touch: bool = True):
     """A page of the explorer on the phone (`touch`) or, as wide, with a mouse, once its
     data arrived; and its console log."""
     context = browser.new_context(**(PHONE if touch else {"viewport": PHONE["viewport"]}))
-    page = context.new_page()
-    console: list[str] = []
-    page.on("console", lambda m: console.append(f"{m.type}: {m.text}"))
-    page.on("pageerror", lambda e: console.append(f"pageerror: {e}"))
-    page.goto(url)
-    page.wait_for_function(JS_READY, timeout=60_000)
-    page.evaluate(JS_HELPERS)
-    return page, console
+    return load(context.new_page(), url)
 
 
 def swipe_up(page, x: float, y: float, distance: float = 150, steps: int = 10) -> None:
