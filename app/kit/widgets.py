@@ -234,6 +234,7 @@ class ExactSlider(pn.viewable.Viewer):
         self._entry = TextInput(title=label, value=self.text(value),
                                 sizing_mode="stretch_width", margin=(0, 8),
                                 stylesheets=[ENTRY_CSS],
+                                css_classes=[f"entry-{name}"] if name else [],
                                 tags=[f"{name}-entry"] if name else [])
         self._message = pn.pane.HTML("", visible=False, styles=ERROR_STYLE,
                                      margin=(0, 8), sizing_mode="stretch_width",

@@ -33,9 +33,6 @@ ARTIFACTS = ROOT / "artifacts"
 IGNORED_CONSOLE = ("could not set initial ranges",)  # Bokeh's note on hidden figures
 
 
-#: The sidebar's number boxes, in the page's order (the drive angle's below psi's).
-BOXES = ("psi", "theta", "tau0", "mu", "nu", "tau")
-
 
 def errors(console: list[str]) -> list[str]:
     return [m for m in console if m.startswith(("error", "pageerror"))
@@ -163,7 +160,7 @@ def test_a_refused_entry_says_why_under_its_box_and_keeps_the_value(
     """Boxes 0-4: psi, tau0, mu, nu, tau.  The message is the URL's for the same value."""
     name = ("psi", "tau0", "mu", "nu", "tau")[box]
     page, console = open_explorer(browser, url)
-    entry = page.locator("input.bk-input").nth(BOXES.index(name))
+    entry = page.locator(f".entry-{name} input")
     before = entry.input_value()
     T = column(page, "force", "T")
     entry.fill(typed)
@@ -432,7 +429,7 @@ def phase_of(psi: float, tau0: float, tau: float) -> str:
 
 def test_the_traction_phase_is_painted_after_psi_moves_into_counter_slip(browser, url) -> None:
     page, console = open_explorer(browser, url)
-    box = page.locator("input.bk-input").nth(BOXES.index("tau"))
+    box = page.locator(".entry-tau input")
     box.fill("2.30")
     box.press("Enter")
     assert_phase_painted(page, phase_of(math.sqrt(2) + 1, math.pi / 6, 2.30))
@@ -462,7 +459,7 @@ def test_the_traction_phase_is_painted_after_a_preset(browser, url, preset: str)
 
 def test_the_traction_phase_is_painted_after_a_typed_tau(browser, url) -> None:
     page, console = open_explorer(browser, url)
-    box = page.locator("input.bk-input").nth(BOXES.index("tau"))
+    box = page.locator(".entry-tau input")
     box.fill("2.5")
     box.press("Enter")
     assert_phase_painted(page, phase_of(math.sqrt(2) + 1, math.pi / 6, 2.5))
