@@ -33,7 +33,6 @@ ARTIFACTS = ROOT / "artifacts"
 IGNORED_CONSOLE = ("could not set initial ranges",)  # Bokeh's note on hidden figures
 
 
-
 def errors(console: list[str]) -> list[str]:
     return [m for m in console if m.startswith(("error", "pageerror"))
             and not any(s in m for s in IGNORED_CONSOLE)]
