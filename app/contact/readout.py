@@ -48,7 +48,7 @@ class Readout(pn.viewable.Viewer):
         super().__init__()
         #: the (quantity, value) rows shown
         self.rows: list[tuple[str, str]] = []
-        self.pane = HtmlDiv(table_html([]), stylesheets=[TABLE_CSS])
+        self.pane = HtmlDiv(table_html([]), stylesheets=[TABLE_CSS], name="derived_quantities")
 
     def __panel__(self) -> HtmlDiv:
         return self.pane

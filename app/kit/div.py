@@ -1,43 +1,34 @@
-"""HTML that changes on every move: a Bokeh `Div` whose text is written directly.
+"""HTML that changes on every move, cheap for the server and for the browser.
 
+A psi move rewrites the four plots' descriptions and the table of derived quantities.
 Panel's `HTML` pane recomputes all its model's properties, and builds new stylesheet
-models, on every change of its `object`: about 2 ms of server CPU on these machines,
-against 0.02 ms for setting a Bokeh `Div`'s `text`.  A psi move rewrites the four plots'
-descriptions and the table of derived quantities, so these are `HtmlDiv`s.  Their text
-is HTML, shown as markup: callers escape what is text.
+models, on every change of its `object` (about 2 ms of server CPU on these machines); a
+Bokeh `Div` costs the server nothing (0.02 ms) but BokehJS renders a Div anew on every
+change of its text and lays out the whole page again (30 ms more per move in the
+browser, `benchmarks/app/app_latency.py --revs`).  `HtmlDiv` is a `ReactiveHTML` whose
+text is a property of its data model: a change sends that property and a line of
+JavaScript writes it into the element, nothing is laid out again.  Its text is HTML,
+shown as markup: callers escape what is text.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from typing import ClassVar
 
-import panel as pn
-from bokeh.models import Div
-from panel.io import hold
+import param
+from panel.reactive import ReactiveHTML
 
 
-class HtmlDiv(pn.viewable.Viewer):
-    """A Bokeh `Div` showing `object` (HTML), with `stylesheets` (CSS, `:host` is the
-    Div), named `name` in the document; math in it is never typeset."""
+class HtmlDiv(ReactiveHTML):
+    """A <div> showing `object` (HTML); `stylesheets` style it (`:host` is the component)."""
 
-    def __init__(self, text: str = "", *, stylesheets: Sequence[str] = (),
-                 name: str | None = None, sizing_mode: str | None = "stretch_width",
-                 margin: int | tuple[int, ...] = 0) -> None:
-        super().__init__()
-        #: the Bokeh model (one per page: each session builds its own)
-        self.div = Div(text=text, disable_math=True, stylesheets=list(stylesheets),
-                       name=name, sizing_mode=sizing_mode, margin=margin)
-        self._pane = pn.pane.Bokeh(self.div, sizing_mode=sizing_mode, margin=0)
+    object = param.String(default="", doc="the HTML shown")
 
-    def __panel__(self) -> pn.pane.Bokeh:
-        return self._pane
+    _template = '<div id="box"></div>'
+    _scripts: ClassVar[dict[str, str]] = dict.fromkeys(
+        ("render", "object"), "box.innerHTML = data.object;")
 
-    @property
-    def object(self) -> str:
-        """The HTML shown."""
-        return self.div.text
-
-    @object.setter
-    def object(self, text: str) -> None:
-        with hold():  # (a Bokeh model changed outside Panel's handling of an event
-            self.div.text = text  # needs it; Bokeh sends nothing when it is unchanged)
+    def __init__(self, object: str = "", **params) -> None:
+        params.setdefault("margin", 0)
+        params.setdefault("sizing_mode", "stretch_width")
+        super().__init__(object=object, **params)

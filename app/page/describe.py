@@ -81,8 +81,8 @@ def description_html(name: str, text: str) -> str:
             f'<p id="d">{html.escape(text)}</p></div>')
 
 
-#: The description's text clipped to nothing too (the Div's own box holds it at its
-#: natural width, beyond the 1 px of its hidden host).
+#: The description's text clipped to nothing too (its own box keeps its natural width,
+#: beyond the 1 px of its hidden host).
 HIDDEN_TEXT_CSS = "p { margin: 0; overflow: hidden; clip-path: inset(50%); white-space: nowrap; }"
 
 

@@ -232,9 +232,13 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
     # (the drive angle's slider follows psi: theta = arctan(psi tan theta0))
     theta = doc.select_one({"tags": "theta-slider"}).data
     # the texts: the derived quantities' table and the four plots' descriptions for
-    # screen readers (`HtmlDiv`s, Bokeh Divs: their text is all they send)
-    texts = {("Div", None, "text")} | {("Div", f"{k}_description", "text")
-                                       for k in ("spheres", "traction", "disc", "curves")}
+    # screen readers (`HtmlDiv`s: their text, a property of their data model, is all
+    # they send)
+    names = {"derived_quantities"} | {f"{k}_description"
+                                      for k in ("spheres", "traction", "disc", "curves")}
+    texts = {(type(m).__name__, m.name, "object") for m in doc.models
+             if m.name in names and "object" in m.properties()}
+    assert len(texts) == len(names)
     assert changed == data | texts | {("Label", "traction_caption", "text"),
                                       ("Label", "spheres_rest_note", "text"),
                                       (type(slider).__name__, slider.name, "value"),
