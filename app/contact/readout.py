@@ -2,17 +2,15 @@
 
 Real text in the page, so that it can be read aloud, selected, copied, zoomed and
 searched: a caption naming the table, a header row, each quantity a row header
-(`<th scope="row">`) and its value a cell.  Names and values are shown as text (escaped),
-never interpreted as markup.
+(`<th scope="row">`) and its value a cell (`app.kit.div.TextTable`, built in the browser
+from the rows: names and values are set as text, never interpreted as markup).
 """
 
 from __future__ import annotations
 
-import html
-
 import panel as pn
 
-from app.kit.div import HtmlDiv
+from app.kit.div import TextTable
 
 #: What the table is, for a screen reader (the card's title shows it on screen).
 CAPTION = "Derived quantities of the current contact"
@@ -32,25 +30,17 @@ td { font-weight: bold; font-variant-numeric: tabular-nums; }
 """
 
 
-def table_html(rows: list[tuple[str, str]]) -> str:
-    """The HTML table of (quantity, value) `rows`, top to bottom, as escaped text."""
-    body = "".join(f'<tr><th scope="row">{html.escape(q)}</th><td>{html.escape(v)}</td></tr>'
-                   for q, v in rows)
-    return (f'<table class="readout"><caption>{html.escape(CAPTION)}</caption>'
-            '<thead><tr><th scope="col">Quantity</th><th scope="col">Value</th></tr></thead>'
-            f"<tbody>{body}</tbody></table>")
-
-
 class Readout(pn.viewable.Viewer):
-    """The derived quantities of the current contact as an HTML table (`show(rows)`)."""
+    """The derived quantities of the current contact as a table of text (`show(rows)`)."""
 
     def __init__(self) -> None:
         super().__init__()
         #: the (quantity, value) rows shown
         self.rows: list[tuple[str, str]] = []
-        self.pane = HtmlDiv(table_html([]), stylesheets=[TABLE_CSS], name="derived_quantities")
+        self.pane = TextTable(caption=CAPTION, stylesheets=[TABLE_CSS],
+                              name="derived_quantities")
 
-    def __panel__(self) -> HtmlDiv:
+    def __panel__(self) -> TextTable:
         return self.pane
 
     def show(self, rows: list[tuple[str, str]]) -> None:
@@ -58,4 +48,4 @@ class Readout(pn.viewable.Viewer):
         rows = list(rows)
         if rows != self.rows:
             self.rows = rows
-            self.pane.object = table_html(rows)
+            self.pane.rows = [list(r) for r in rows]

@@ -9,14 +9,12 @@ pause writes them once.  The page puts them beside the plots (`app.page.layout`)
 
 from __future__ import annotations
 
-import html
-
 import numpy as np
 
 from app.contact.state import ExplorerState
 from app.contact.view import TAB_TITLES, ContactView
 from app.kit.a11y import LiveText
-from app.kit.div import HtmlDiv
+from app.kit.div import Description
 from app.kit.style import VISUALLY_HIDDEN_CSS
 from core import PHASE_NAMES, Contact, Phase
 
@@ -74,13 +72,6 @@ def descriptions(c: Contact, tau: float, tab: int) -> dict[str, str]:
     }
 
 
-def description_html(name: str, text: str) -> str:
-    """A figure named `name`, described by `text`, for a screen reader (the page hides
-    it from sight: `app.kit.style.VISUALLY_HIDDEN_CSS`)."""
-    return (f'<div role="figure" aria-label="{html.escape(name)}" aria-describedby="d">'
-            f'<p id="d">{html.escape(text)}</p></div>')
-
-
 #: The description's text clipped to nothing too (its own box keeps its natural width,
 #: beyond the 1 px of its hidden host).
 HIDDEN_TEXT_CSS = "p { margin: 0; overflow: hidden; clip-path: inset(50%); white-space: nowrap; }"
@@ -93,8 +84,9 @@ class Describer:
         self.contact, self.state = contact, state
         #: each plot's name and description (by `PLOT_NAMES`' keys)
         self.descriptions = {
-            key: HtmlDiv(stylesheets=[VISUALLY_HIDDEN_CSS, HIDDEN_TEXT_CSS],
-                         name=f"{key}_description")
+            key: Description(label=PLOT_NAMES[key],
+                             stylesheets=[VISUALLY_HIDDEN_CSS, HIDDEN_TEXT_CSS],
+                             name=f"{key}_description")
             for key in PLOT_NAMES}
         #: the polite live region announcing a change of phase
         self.announcer = LiveText(name="phase_announcement")
@@ -116,7 +108,7 @@ class Describer:
         if tab not in range(len(TAB_TITLES)):
             return
         for key, text in descriptions(c, tau, tab).items():
-            self.descriptions[key].object = description_html(PLOT_NAMES[key], text)
+            self.descriptions[key].description = text
         phase = int(c.phase(tau))
         if phase != self._announced and phase != Phase.NO_CONTACT:
             self._announced = phase
