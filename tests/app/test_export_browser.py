@@ -18,7 +18,8 @@ pytestmark = pytest.mark.browser
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 #: JavaScript: the page rectangle of plot `title`, its canvas's size (CSS px), the
-#: device pixel ratio, whether its toolbar is shown and the rectangle of its save button.
+#: device pixel ratio, whether its toolbar is shown, the rectangle of its save button,
+#: its frame's box (CSS px, within the canvas) and the text of its stamp (null if none).
 JS_PLOT = """(title) => {
   const plot = __views((v) => v.model != null && v.model.type === "Figure"
                        && v.model.title != null && v.model.title.text === title)[0];
@@ -27,10 +28,13 @@ JS_PLOT = """(title) => {
   const save = [...bar.children()].find((b) => b.model.tool.type === "SaveTool");
   const rect = (el) => { const r = el.getBoundingClientRect();
                          return [r.x, r.y, r.width, r.height]; };
+  const stamp = plot.model.center.find((m) => m.tags.includes("png-stamp"));
+  const f = plot.frame.bbox;
   return {plot: rect(plot.el), canvas: [plot.canvas_view.bbox.width,
                                         plot.canvas_view.bbox.height],
           ratio: window.devicePixelRatio, shown: !bar.el.classList.contains("bk-hidden"),
-          save: rect(save.el)};
+          save: rect(save.el), frame: [f.x, f.y, f.width, f.height],
+          stamp: stamp == null ? null : stamp.text};
 }"""
 
 

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 from explorer_browser import column, open_explorer, wait_until
 from PIL import Image
+from test_export_browser import JS_PLOT, save_plot
 
 pytestmark = pytest.mark.browser
 
@@ -82,22 +83,6 @@ def test_a_panned_curve_never_covers_the_title(browser, url, title, source) -> N
     page.close()
 
 
-#: JavaScript: the page rectangle of plot `title`, whether its toolbar is shown, the
-#: rectangle of its save button, its canvas's and frame's boxes (CSS px, the frame within
-#: the canvas), and the text of its stamp.
-JS_PLOT = """(title) => {
-  const plot = __views((v) => v.model != null && v.model.type === "Figure"
-                       && v.model.title != null && v.model.title.text === title)[0];
-  const bar = __views((v) => v.model != null && v.model.type === "Toolbar"
-                      && v.parent != null && v.parent.parent === plot)[0];
-  const save = [...bar.children()].find((b) => b.model.tool.type === "SaveTool");
-  const rect = (el) => { const r = el.getBoundingClientRect();
-                         return [r.x, r.y, r.width, r.height]; };
-  const stamp = plot.model.center.find((m) => m.tags.includes("png-stamp"));
-  const f = plot.frame.bbox;
-  return {plot: rect(plot.el), shown: !bar.el.classList.contains("bk-hidden"),
-          save: rect(save.el), frame: [f.x, f.y, f.width, f.height], stamp: stamp.text};
-}"""
 
 #: JavaScript: show (true) or hide plot `title`'s stamp, in the browser only.
 JS_SHOW_STAMP = """([title, visible]) => {
@@ -108,19 +93,10 @@ JS_SHOW_STAMP = """([title, visible]) => {
 }"""
 
 
-def save_plot(page, title: str) -> np.ndarray:
-    """Hover the plot titled `title` (its toolbar hides otherwise), click its save tool;
-    the PNG's pixels (RGB)."""
-    page.evaluate("(t) => __views((v) => v.model != null && v.model.type === 'Figure'"
-                  " && v.model.title != null && v.model.title.text === t)[0]"
-                  ".el.scrollIntoView({block: 'center'})", title)
-    x, y, w, h = page.evaluate(JS_PLOT, title)["plot"]
-    page.mouse.move(x + w / 2, y + h / 2)
-    page.wait_for_function(f"() => ({JS_PLOT})({title!r}).shown", timeout=10_000)
-    bx, by, bw, bh = page.evaluate(JS_PLOT, title)["save"]
-    with page.expect_download(timeout=20_000) as info:
-        page.mouse.click(bx + bw / 2, by + bh / 2)
-    return np.asarray(Image.open(info.value.path()).convert("RGB")).astype(int)
+def save_pixels(page, title: str) -> np.ndarray:
+    """The PNG saved from the toolbar of the plot titled `title`: its pixels (RGB)."""
+    download, _ = save_plot(page, title)
+    return np.asarray(Image.open(download.path()).convert("RGB")).astype(int)
 
 
 def move_psi(page, presses: int) -> float:
@@ -158,10 +134,10 @@ def test_a_saved_png_names_psi_tau0_and_tau(browser, url) -> None:
         wait_until(lambda t=title, s=sep: page.evaluate(JS_PLOT, t)["stamp"]
                    == stamp_of(psi, tau0, tau, s), what=f"{title}'s stamp")
     title = "Traction profile"
-    stamped = save_plot(page, title)
+    stamped = save_pixels(page, title)
     page.evaluate(JS_SHOW_STAMP, [title, False])
     page.evaluate(PAINTED)
-    bare = save_plot(page, title)
+    bare = save_pixels(page, title)
     page.evaluate(JS_SHOW_STAMP, [title, True])
     rows, cols = np.nonzero(np.any(np.abs(stamped - bare) > 60, axis=2))
     assert rows.size > 200, "the PNG shows no stamp"
