@@ -4,6 +4,8 @@ the first screen shows the two spheres and Play, nothing is wider than the phone
 
 from __future__ import annotations
 
+import time
+
 import pytest
 from explorer_browser import load, wait_until
 from test_browser import ARTIFACTS, errors, typeset
@@ -54,14 +56,22 @@ def open_phone(browser, url: str, touch: bool = True):
 
 def swipe_up(page, x: float, y: float, distance: float = 150, steps: int = 10) -> None:
     """A finger put down at (x, y) (CSS px in the viewport), moved up by `distance` px
-    in `steps` moves and lifted: touch events as a touch screen sends them (CDP)."""
+    in `steps` moves 16 ms apart, held still for 100 ms and lifted: touch events as a
+    touch screen sends them (CDP, with their times).  Held still, the swipe leaves no
+    fling behind, which would take the next tap to stop it (as a finger's tap stops a
+    fling) instead of clicking."""
     cdp = page.context.new_cdp_session(page)
-    cdp.send("Input.dispatchTouchEvent",
-             {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
+    t0, end = time.time(), y - distance
+
+    def touch(kind: str, at: float, points: list) -> None:
+        cdp.send("Input.dispatchTouchEvent",
+                 {"type": kind, "touchPoints": points, "timestamp": t0 + at})
+
+    touch("touchStart", 0.0, [{"x": x, "y": y}])
     for k in range(1, steps + 1):
-        cdp.send("Input.dispatchTouchEvent", {
-            "type": "touchMove", "touchPoints": [{"x": x, "y": y - distance * k / steps}]})
-    cdp.send("Input.dispatchTouchEvent", {"type": "touchEnd", "touchPoints": []})
+        touch("touchMove", 0.016 * k, [{"x": x, "y": y - distance * k / steps}])
+    touch("touchMove", 0.016 * steps + 0.1, [{"x": x, "y": end}])
+    touch("touchEnd", 0.016 * steps + 0.11, [])
     cdp.detach()
 
 
