@@ -15,7 +15,7 @@ from typing import ClassVar
 import panel as pn
 import param
 
-from app.kit.style import HIDE_TAB_HEADERS_CSS, VISUALLY_HIDDEN_CSS
+from app.kit.style import FOCUS_RING, HIDE_TAB_HEADERS_CSS, VISUALLY_HIDDEN_CSS
 from app.kit.widgets import finite, show_later
 
 log = logging.getLogger(__name__)
@@ -106,8 +106,7 @@ class TabList(pn.reactive.ReactiveHTML):
 [role=tab]:hover { background: #e2e6ea; }
 [role=tab][aria-selected=true] { background: white; font-weight: bold;
                                  border-top-color: #0072B2; }
-[role=tab]:focus-visible { outline: 3px solid #1A5FB4; outline-offset: 2px; }
-"""
+""" + f"[role=tab]:focus-visible {{ {FOCUS_RING} }}\n"
 
     def __init__(self, **params) -> None:
         params["stylesheets"] = [self.CSS, *params.get("stylesheets", [])]

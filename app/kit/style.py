@@ -1,5 +1,10 @@
 """Styles shared by the page and its features (CSS properties and stylesheets)."""
 
+#: Colour of the ring around the control the keyboard is on (6.3:1 on white).
+FOCUS_COLOR = "#1A5FB4"
+#: The ring itself, 3 px, 2 px outside the control (a CSS declaration for `:focus-visible`).
+FOCUS_RING = f"outline: 3px solid {FOCUS_COLOR}; outline-offset: 2px;"
+
 #: The note under the preset selector: what to notice in the figure on screen.
 NOTE_STYLE = {"background": "#eef5fb", "color": "#1b3a57", "border-left": "4px solid #0072B2",
               "padding": "0.4em 0.8em", "font-size": "1rem"}

@@ -38,6 +38,7 @@ from panel.io import hold, unlocked
 from panel.io.state import set_curdoc
 
 from app.kit.jobs import later
+from app.kit.style import FOCUS_RING
 
 log = logging.getLogger(__name__)
 
@@ -195,7 +196,7 @@ class LabelledSlider(pn.reactive.ReactiveHTML):
 #: components, `app.page.layout.CSS`, does not reach) drawn as those: the page's type
 #: size, the keyboard's ring, a disabled box greyed.
 ENTRY_CSS = (".bk-input { font-size: var(--bokeh-font-size, 16px); }"
-             ".bk-input:focus-visible { outline: 3px solid #1A5FB4; outline-offset: 2px; }"
+             f".bk-input:focus-visible {{ {FOCUS_RING} }}"
              ".bk-input[disabled] { background-color: #f3f3f3; opacity: 0.5; }")
 
 
@@ -229,8 +230,8 @@ class ExactSlider(pn.viewable.Viewer):
             sizing_mode="stretch_width", margin=(0, 8, 5, 8),
             css_classes=[f"slider-{name}"] if name else [],
             tags=[f"{name}-slider"] if name else [])
-        # (Bokeh's own text input: written on every move of the slider, it costs the
-        # server a fiftieth of Panel's widget per change, `app.kit.div`)
+        # (Bokeh's own text input: written on every move of the slider, a change costs
+        # the server ~0.02 ms against ~0.9 ms for Panel's TextInput)
         self._entry = TextInput(title=label, value=self.text(value),
                                 sizing_mode="stretch_width", margin=(0, 8),
                                 stylesheets=[ENTRY_CSS],

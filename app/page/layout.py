@@ -25,6 +25,7 @@ import panel as pn
 from app.contact.phases import STYLES
 from app.contact.view import TAB_TITLES, ContactView
 from app.kit.a11y import KeyShortcut, Landmark, TabList
+from app.kit.style import FOCUS_RING
 from app.kit.touch import PlotGestures
 from core import Phase
 
@@ -37,9 +38,6 @@ DISC_KEY = " ".join(
 
 #: The widest screen (CSS px) laid out as a phone's: type at 16 px, one column.
 PHONE_WIDTH = 700
-
-#: Colour of the ring around the control the keyboard is on (6.3:1 on white).
-FOCUS_COLOR = "#1A5FB4"
 
 #: The page's CSS, in the page and in every Panel component's shadow root
 #: (`pn.config.raw_css`):
@@ -57,7 +55,7 @@ html {{ font-size: 17px; }}
   :root {{ --bokeh-font-size: 16px; }} html {{ font-size: 16px; }}
 }}
 input, select, textarea {{ font-size: inherit; }}
-:host :focus-visible {{ outline: 3px solid {FOCUS_COLOR}; outline-offset: 2px; }}
+:host :focus-visible {{ {FOCUS_RING} }}
 input[type="checkbox"] + * {{ margin-left: 0.5em; }}
 :host {{
   --success: #00785A; --success-border: #00664D; --success-hover: #006A4F;

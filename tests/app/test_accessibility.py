@@ -17,8 +17,9 @@ from app.contact.data import readout_rows
 from app.contact.readout import CAPTION
 from app.contact.state import ExplorerState
 from app.contact.view import TAB_TITLES
+from app.kit.style import FOCUS_COLOR
 from app.page.describe import PLOT_NAMES, announcement, descriptions
-from app.page.layout import FOCUS_COLOR, KEY_NAMES, KEYS, PLAY_KEY
+from app.page.layout import KEY_NAMES, KEYS, PLAY_KEY
 from core import Contact
 
 pytestmark = pytest.mark.browser
