@@ -2,7 +2,7 @@
 
 Real text in the page, so that it can be read aloud, selected, copied, zoomed and
 searched: a caption naming the table, a header row, each quantity a row header
-(`<th scope="row">`) and its value a cell (`app.kit.div.TextTable`, built in the browser
+(`<th scope="row">`) and its value a cell (`app.kit.texts.TextTable`, built in the browser
 from the rows: names and values are set as text, never interpreted as markup).
 """
 
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import panel as pn
 
-from app.kit.div import TextTable
+from app.kit.texts import TextTable
 
 #: What the table is, for a screen reader (the card's title shows it on screen).
 CAPTION = "Derived quantities of the current contact"
@@ -35,8 +35,6 @@ class Readout(pn.viewable.Viewer):
 
     def __init__(self) -> None:
         super().__init__()
-        #: the (quantity, value) rows shown
-        self.rows: list[tuple[str, str]] = []
         self.pane = TextTable(caption=CAPTION, stylesheets=[TABLE_CSS],
                               name="derived_quantities")
 
@@ -44,8 +42,6 @@ class Readout(pn.viewable.Viewer):
         return self.pane
 
     def show(self, rows: list[tuple[str, str]]) -> None:
-        """Show (quantity, value) rows, top to bottom (unchanged rows are not sent again)."""
-        rows = list(rows)
-        if rows != self.rows:
-            self.rows = rows
-            self.pane.rows = [list(r) for r in rows]
+        """Show (quantity, value) rows, top to bottom (unchanged rows are not sent again:
+        param sets nothing equal to what it holds)."""
+        self.pane.rows = [list(r) for r in rows]

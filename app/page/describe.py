@@ -14,8 +14,8 @@ import numpy as np
 from app.contact.state import ExplorerState
 from app.contact.view import TAB_TITLES, ContactView
 from app.kit.a11y import LiveText
-from app.kit.div import Description
 from app.kit.style import VISUALLY_HIDDEN_CSS
+from app.kit.texts import Description
 from core import PHASE_NAMES, Contact, Phase
 
 #: The plots' accessible names (their cards' titles), by the key of their description.

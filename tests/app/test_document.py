@@ -219,7 +219,7 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
     # (the drive angle's slider follows psi: theta = arctan(psi tan theta0))
     theta = doc.select_one({"tags": "theta-slider"}).data
     # the texts: the derived quantities' table and the four plots' descriptions for
-    # screen readers (`app.kit.div`: their text, a property of their data model, is
+    # screen readers (`app.kit.texts`: their text, a property of their data model, is
     # all they send)
     texts = {(type(m).__name__, m.name, attr) for m in doc.models
              for name, attr in [("derived_quantities", "rows"),

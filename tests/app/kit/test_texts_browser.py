@@ -1,4 +1,4 @@
-"""app.kit.div in Chromium: the texts are set as text, never read as markup, and follow
+"""app.kit.texts in Chromium: the texts are set as text, never read as markup, and follow
 their data model's changes."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ import panel as pn
 import pytest
 from explorer_browser import free_port, wait_until
 
-from app.kit.div import Description, TextTable
+from app.kit.texts import Description, TextTable
 
 pytestmark = pytest.mark.browser
 
