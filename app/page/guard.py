@@ -84,12 +84,12 @@ class BuildLimit:
     """How many pages one client address may have built: a token bucket of `burst`
     builds, refilled at `rate` per second.
 
-    A page build takes the server's event loop for ~0.4 s of CPU, during which no other
-    session of the process is served: a client loading pages in a loop would stall
-    every lecture on its process.  Past its bucket a client gets `refusal_page`, which
-    costs a few ms.  `burst` is sized for a class behind one address (a school's NAT)
-    opening the page at once; `rate` for that class reloading now and then.  Idle
-    clients' buckets are forgotten (at most `clients` are kept).
+    A page build takes ~0.4 s of CPU on a worker thread (`app.serve.applications`),
+    which the sessions already open share the interpreter with: a client loading pages
+    in a loop would slow every lecture on its process.  Past its bucket a client gets
+    `refusal_page`, which costs a few ms.  `burst` is sized for a class behind one
+    address (a school's NAT) opening the page at once; `rate` for that class reloading
+    now and then.  Idle clients' buckets are forgotten (at most `clients` are kept).
     """
 
     def __init__(self, burst: float = 40.0, rate: float = 0.25, clients: int = 10_000,
@@ -136,14 +136,15 @@ def refusal_page(seconds: float) -> pn.Column:
         f"your network just now. Please reload this page in {math.ceil(seconds)} s.</p>"))
 
 
-def serve_page() -> pn.Column:
-    """Build the page of the session being created (the application script's one call)
+def serve_page() -> None:
+    """Build the page of the session being created (the server's application)
     from its URL, guarded as `build_page` says, and mark it servable; a client past its
     page builds (`BUILDS`) gets `refusal_page` instead."""
     request = pn.state.curdoc.session_context.request
     client = str(request.remote_ip)
     if not BUILDS.allow(client):
         log.debug("page refused to %s: past its page builds", client)
-        return refusal_page(BUILDS.retry_after(client)).servable(title="Zharii contact explorer")
+        refusal_page(BUILDS.retry_after(client)).servable(title="Zharii contact explorer")
+        return
     explorer, page = build_page(pn.state.session_args, location_of(request))
-    return explorer.servable(page)
+    explorer.servable(page)

@@ -201,3 +201,35 @@ def test_behind_a_proxy_the_client_is_the_last_forwarded_hop() -> None:
 
     assert server_options(parse_args(["--behind-proxy"]))["use_xheaders"] is True
     assert server_options(parse_args([]))["use_xheaders"] is False
+
+
+def test_a_page_build_does_not_hold_up_the_server(served, monkeypatch) -> None:  # noqa: F811
+    """While one page is being built (held here until the server has answered), the
+    server answers other requests: builds run on a worker thread, not on the event loop
+    that serves the open sessions (`app.serve.applications`)."""
+    import threading
+
+    url, _ = served
+    building, release = threading.Event(), threading.Event()
+    threads = []
+    build = app.page.guard.build_page
+
+    def held_build(query, location):
+        threads.append(threading.current_thread())
+        building.set()
+        assert release.wait(30), "the test never released the build"
+        return build(query, location)
+
+    monkeypatch.setattr(app.page.guard, "build_page", held_build)
+    page = threading.Thread(target=lambda: urllib.request.urlopen(url, timeout=60).read())
+    page.start()
+    try:
+        assert building.wait(30), "no page build started"
+        liveness = url.rsplit("/", 1)[0] + "/liveness"
+        with urllib.request.urlopen(liveness, timeout=10) as r:  # the loop answers
+            assert r.status == 200
+    finally:
+        release.set()
+        page.join(60)
+    assert threads[0] is not threading.main_thread()
+    assert threads[0].name.startswith("asyncio")  # the event loop's worker threads

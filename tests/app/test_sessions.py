@@ -25,7 +25,7 @@ from tornado.ioloop import IOLoop
 from app.contact.state import ExplorerState
 from app.methods import MethodsScene
 from app.page.explorer import Explorer
-from app.serve import MAIN, parse_args, server_options
+from app.serve import applications, parse_args, server_options
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -46,7 +46,7 @@ def served():
     def run() -> None:
         asyncio.set_event_loop(asyncio.new_event_loop())
         loop = IOLoop.current()
-        box["server"] = get_server({"main": str(MAIN)}, loop=loop, start=False, **opts)
+        box["server"] = get_server(applications(), loop=loop, start=False, **opts)
         box["loop"] = loop
         box["server"].start()
         loop.start()
