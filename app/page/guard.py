@@ -136,12 +136,24 @@ def refusal_page(seconds: float) -> pn.Column:
         f"your network just now. Please reload this page in {math.ceil(seconds)} s.</p>"))
 
 
+def gone(request: Any) -> bool:
+    """Whether the client of `request` (Bokeh's session request) has hung up: the HTTP
+    connection of its page load is closed.  A websocket's request, whose connection the
+    websocket has taken over, is never gone."""
+    stream = getattr(getattr(request, "connection", None), "stream", None)
+    return stream is not None and stream.closed()
+
+
 def serve_page() -> None:
     """Build the page of the session being created (the server's application)
     from its URL, guarded as `build_page` says, and mark it servable; a client past its
-    page builds (`BUILDS`) gets `refusal_page` instead."""
+    page builds (`BUILDS`) gets `refusal_page` instead, and one that has hung up while
+    its build waited for a worker nothing (its session is discarded unused)."""
     request = pn.state.curdoc.session_context.request
     client = str(request.remote_ip)
+    if gone(request):
+        log.debug("page not built for %s: the client has gone", client)
+        return
     if not BUILDS.allow(client):
         log.debug("page refused to %s: past its page builds", client)
         refusal_page(BUILDS.retry_after(client)).servable(title="Zharii contact explorer")

@@ -233,3 +233,44 @@ def test_a_page_build_does_not_hold_up_the_server(served, monkeypatch) -> None: 
         page.join(60)
     assert threads[0] is not threading.main_thread()
     assert threads[0].name.startswith("asyncio")  # the event loop's worker threads
+
+
+def test_a_page_whose_client_has_gone_is_not_built(served, monkeypatch) -> None:  # noqa: F811
+    """A page load whose client hangs up before its build starts (the build waited for a
+    worker, here held until the client has gone) builds nothing: no explorer for no one."""
+    import socket
+    import threading
+    import time
+    from urllib.parse import urlsplit
+
+    url, _ = served
+    asked, hung_up = threading.Event(), threading.Event()
+    seen, built = [], []
+    check, build = app.page.guard.gone, app.page.guard.build_page
+
+    def late_check(request):  # the build's turn comes once the client has hung up
+        asked.set()
+        assert hung_up.wait(30), "the test never hung up"
+        deadline = time.monotonic() + 10  # (the server sees the close on its loop)
+        while not check(request) and time.monotonic() < deadline:
+            time.sleep(0.02)
+        seen.append(check(request))
+        return seen[-1]
+
+    monkeypatch.setattr(app.page.guard, "gone", late_check)
+    monkeypatch.setattr(app.page.guard, "build_page",
+                        lambda q, loc: built.append(q) or build(q, loc))
+    parts = urlsplit(url)
+    client = socket.create_connection((parts.hostname, parts.port), timeout=10)
+    client.sendall(f"GET {parts.path} HTTP/1.1\r\nHost: {parts.netloc}\r\n\r\n".encode())
+    assert asked.wait(30), "no page build started"
+    client.close()
+    hung_up.set()
+    deadline = time.monotonic() + 30
+    while not seen and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert seen == [True] and built == []
+    monkeypatch.setattr(app.page.guard, "gone", check)  # and a client that stays is served
+    with urllib.request.urlopen(url, timeout=60) as r:
+        assert r.status == 200
+    assert len(built) == 1
