@@ -16,7 +16,9 @@ import re
 import unicodedata
 
 import numpy as np
+from bokeh.events import LODStart, RangesUpdate
 from bokeh.models import (
+    BoxZoomTool,
     ColumnDataSource,
     CustomJS,
     Glyph,
@@ -24,8 +26,10 @@ from bokeh.models import (
     Label,
     Legend,
     LegendItem,
+    PanTool,
     Range1d,
     SaveTool,
+    WheelZoomTool,
 )
 from bokeh.plotting import figure
 
@@ -39,14 +43,18 @@ CURVE_POINTS = 400  # points per curve over the contact: finer than any screen n
 PROFILE_POINTS = 151  # points across the contact diameter for the traction profile
 
 LINE_COLORS = ("#000000", "#D55E00", "#0072B2", "#CC79A7", "#009E73")
-#: Bokeh level of what changes on an animation frame or a slider move in a figure that
-#: cannot be panned or zoomed, and of labels (which BokehJS clips to the frame): the
-#: browser then repaints only the plot's overlay layer, not its axes, grid and legend.
-#: BokehJS does not clip glyphs at this level: a panned curve would cover the title.
+#: Bokeh level of what changes on an animation frame or a slider move, and of labels
+#: (which BokehJS clips to the frame): the browser then repaints only the plot's overlay
+#: layer, not its axes, grid, legend and everything else drawn at the lower levels.
+#: BokehJS does not clip glyphs at this level: in a figure with pan or zoom tools,
+#: `style_figure` moves them to `CLIPPED_LEVEL` the moment the user pans or zooms it.
 FRAME_LEVEL = "overlay"
-#: Bokeh level of the data glyphs of a figure with pan and zoom tools: clipped to the
-#: frame (BokehJS repaints the plot's primary layer, axes and grid too, when they change).
-DATA_LEVEL = "glyph"
+#: Bokeh level of the data glyphs of a figure with pan and zoom tools: `FRAME_LEVEL`
+#: until the user pans or zooms the figure (`clip_when_moved`), `CLIPPED_LEVEL` after.
+DATA_LEVEL = FRAME_LEVEL
+#: Bokeh level of glyphs clipped to the frame (when they change, BokehJS repaints the
+#: plot's primary layer: axes, grid and title too).
+CLIPPED_LEVEL = "glyph"
 
 
 def style_figure(fig) -> None:
@@ -62,6 +70,45 @@ def style_figure(fig) -> None:
         fig.legend.background_fill_alpha = 0.7
         fig.legend.click_policy = "hide"
     lean(fig)
+    clip_when_moved(fig)
+
+
+#: The tools by which a user moves a figure's view (its ranges).
+MOVING_TOOLS = (PanTool, WheelZoomTool, BoxZoomTool)
+
+#: JavaScript (a `CustomJS` of `plot`'s LODStart and RangesUpdate events): the glyphs at
+#: `FRAME_LEVEL` of `plot` and of the plots sharing a range with it go to
+#: `CLIPPED_LEVEL`, in the browser only; the ranges change after this runs and the
+#: plots are then repainted whole (both layers).
+CLIP_JS = f"""
+const moved = [...plot.document.all_models].filter((m) => m.type === "Figure"
+  && (m.x_range === plot.x_range || m.y_range === plot.y_range));
+for (const fig of moved) {{
+  for (const r of fig.renderers) {{
+    if (r.type === "GlyphRenderer" && r.level === {FRAME_LEVEL!r}) {{
+      r.setv({{level: {CLIPPED_LEVEL!r}}}, {{sync: false}});
+    }}
+  }}
+}}
+"""
+
+
+def clip_when_moved(fig) -> None:
+    """Keep `fig`'s data inside its frame once the user moves its view.
+
+    Its glyphs at `FRAME_LEVEL` (`DATA_LEVEL`) are painted on the plot's overlay layer,
+    which BokehJS does not clip to the frame: a frame of the animation or a slider move
+    repaints that layer only (the axes, grid, title and legend stay as painted), but a
+    panned or zoomed curve would be drawn over the title and the axes.  So when the user
+    starts to pan or zoom `fig` (BokehJS's LODStart event, fired before the ranges
+    change; RangesUpdate after a box zoom or a reset), those glyphs, and those of the
+    plots sharing a range with it, go to `CLIPPED_LEVEL` for the rest of the page's life
+    (`CLIP_JS`).  Nothing for a figure without pan or zoom tools."""
+    if not any(isinstance(tool, MOVING_TOOLS) for tool in fig.toolbar.tools):
+        return
+    clip = CustomJS(args={"plot": fig}, code=CLIP_JS)
+    fig.js_on_event(LODStart, clip)
+    fig.js_on_event(RangesUpdate, clip)
 
 
 def lean(fig) -> None:
@@ -196,11 +243,12 @@ CLOCK = "spheres_forces"
 #: The tag of the plots' stamps (`stamp`); their second tag is the stamp's separator.
 STAMP_TAG = "png-stamp"
 
-#: JavaScript: every plot's stamp shows the psi, tau0 and tau of the clock (`CLOCK`), as
-#: the browser holds them (the player's frame while playing): written in the browser only
-#: (BokehJS's public `setv(..., {sync: false})`), and only where its text changes.  The
-#: stamps are looked up among the document's models when a plot is laid out (`scan`, a
-#: plot built later brings its own) and kept per document, not on every frame.
+#: JavaScript: every plot's stamp shows the psi, tau0 and tau of the clock (`source`, or
+#: when None the source named `CLOCK`), as the browser holds them (the player's frame
+#: while playing): written in the browser only (BokehJS's public `setv(..., {sync:
+#: false})`), and only where its text changes.  The stamps are looked up among the
+#: document's models when a plot is laid out (`scan`, a plot built later brings its own)
+#: and kept per document, not on every frame.
 STAMPS_JS = f"""
 const doc = cb_obj.document;
 if (doc == null) {{ return; }}
@@ -209,7 +257,7 @@ if (scan || !kept.has(doc)) {{
   kept.set(doc, [...doc.all_models].filter(
     (m) => m.tags.length === 2 && m.tags[0] === {STAMP_TAG!r}));
 }}
-const clock = doc.get_model_by_name({CLOCK!r});
+const clock = source ?? doc.get_model_by_name({CLOCK!r});
 const col = (c) => (clock.data instanceof Map ? clock.data.get(c) : clock.data[c]);
 if (clock == null || col("tau") == null || col("tau").length === 0) {{ return; }}
 const [psi, tau0, tau] = ["psi", "tau0", "tau"].map((c) => col(c)[0]);
@@ -225,25 +273,28 @@ for (const m of kept.get(doc)) {{
 def follow_clock(source: ColumnDataSource) -> None:
     """Make every plot's stamp follow `source` (the clock) in the browser: whenever its
     data change (a message from the server, or a frame the player copies into it)."""
-    source.js_on_change("change", CustomJS(code=STAMPS_JS, args={"scan": False}))
+    source.js_on_change("change", CustomJS(code=STAMPS_JS, args={"scan": False,
+                                                                 "source": source}))
 
 
 def stamp(fig, sep: str = "   ", **place) -> Label:
     """A line drawn in `fig`'s frame naming the contact's psi, tau0 and the time tau
     shown, so that a PNG saved from its toolbar stands alone: by default in the frame's
     bottom left corner (`place` overrides the `Label`'s x, y, units, offsets and
-    alignment; `sep` comes between the three values: a newline stacks them).  It lies
-    under the data (Bokeh's underlay level, clipped to the frame: a curve shows over it;
-    `place` may set another `level`).  The
+    alignment; `sep` comes between the three values: a newline stacks them).  The
     browser writes it (`STAMPS_JS`), when the plot is first laid out and whenever the
-    clock changes: the server sends nothing for it."""
+    clock changes (every frame while playing): the server sends nothing for it.  So it
+    lies at `FRAME_LEVEL` (clipped to the frame, as every label), where a change repaints
+    only the plot's overlay layer, over the data (on a half-transparent ground, which
+    lets a curve through)."""
     where = {"x": 6, "y": 6, "x_units": "screen", "y_units": "screen",
-             "text_align": "left", "text_baseline": "bottom", "level": "underlay"} | place
+             "text_align": "left", "text_baseline": "bottom", "level": FRAME_LEVEL} | place
     label = Label(text="", text_font_size="9pt", text_color="#555555",
                   tags=[STAMP_TAG, sep], background_fill_color="white",
-                  background_fill_alpha=0.8, **where)
+                  background_fill_alpha=0.5, **where)
     fig.add_layout(label)
-    fig.js_on_change("inner_width", CustomJS(code=STAMPS_JS, args={"scan": True}))
+    fig.js_on_change("inner_width", CustomJS(code=STAMPS_JS, args={"scan": True,
+                                                                    "source": None}))
     return label
 
 

@@ -35,6 +35,12 @@ JS_GEOMETRY = """(title) => {
 }"""
 
 
+#: JavaScript: the Bokeh levels of the glyphs drawing source `source` (and its marker's).
+JS_LEVELS = """(source) => [...new Set(__renderers().filter(
+  (v) => [source, source + "_marker"].includes(v.model.data_source.name))
+  .map((v) => v.model.level))]"""
+
+
 #: JavaScript: resolves once the browser has painted twice (what changed is on screen).
 PAINTED = "() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)))"
 
@@ -61,8 +67,11 @@ def pan(page, frame, dx: float, dy: float) -> None:
                                                ("Tangential force T / T₀", "force")])
 def test_a_panned_curve_never_covers_the_title(browser, url, title, source) -> None:
     """The scenes drew their data at Bokeh's overlay level, which BokehJS does not clip
-    to the frame: dragged upwards, the curves were painted over the plot's title."""
+    to the frame: dragged upwards, the curves were painted over the plot's title.  They
+    are there until the user moves the view (a played frame then repaints the overlay
+    layer only), and at the glyph level (clipped) from the pan's start on."""
     page, _ = open_explorer(browser, url)
+    assert page.evaluate(JS_LEVELS, source) == ["overlay"]
     geometry = page.evaluate(JS_GEOMETRY, title)
     page.mouse.move(2, 2)  # (the toolbar hides)
     before = band(page, geometry["title"])
@@ -80,6 +89,7 @@ def test_a_panned_curve_never_covers_the_title(browser, url, title, source) -> N
     # data were painted above the frame before the fix: compare the title's band
     changed = np.any(np.abs(after - before) > 40, axis=2)
     assert changed.mean() < 0.002, f"{changed.sum()} pixels of the title changed"
+    assert page.evaluate(JS_LEVELS, source) == ["glyph"]
     page.close()
 
 
