@@ -42,6 +42,6 @@ class Readout(pn.viewable.Viewer):
         return self.pane
 
     def show(self, rows: list[tuple[str, str]]) -> None:
-        """Show (quantity, value) rows, top to bottom (unchanged rows are not sent again:
-        param sets nothing equal to what it holds)."""
-        self.pane.rows = [list(r) for r in rows]
+        """Show (quantity, value) rows, top to bottom (unchanged rows are not sent
+        again; `app.kit.texts.WrittenHTML.write`)."""
+        self.pane.write(rows=[list(r) for r in rows])

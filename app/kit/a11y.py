@@ -16,6 +16,7 @@ import panel as pn
 import param
 
 from app.kit.style import FOCUS_RING, HIDE_TAB_HEADERS_CSS, VISUALLY_HIDDEN_CSS
+from app.kit.texts import WrittenHTML
 from app.kit.widgets import finite, show_later
 
 log = logging.getLogger(__name__)
@@ -178,10 +179,10 @@ class KeyShortcut(pn.reactive.ReactiveHTML):
         super().__init__(**params)
 
 
-class LiveText(pn.reactive.ReactiveHTML):
+class LiveText(WrittenHTML):
     """Text a screen reader announces when it changes, politely (an `aria-live="polite"`
     status region, kept in the page while its `text`, shown as text, changes); out of
-    sight."""
+    sight.  `write(text=...)` changes the text."""
 
     text = param.String(default="")
 

@@ -39,6 +39,7 @@ from panel.io.state import set_curdoc
 
 from app.kit.jobs import later
 from app.kit.style import FOCUS_RING
+from app.kit.texts import WrittenHTML
 
 log = logging.getLogger(__name__)
 
@@ -147,7 +148,7 @@ if (event != null && event.key in pages) {
 """
 
 
-class LabelledSlider(pn.reactive.ReactiveHTML):
+class LabelledSlider(WrittenHTML):
     """A slider over [start, end] by `step`, named by `label` for a screen reader.
 
     BokehJS's Slider draws a noUiSlider whose handle (role "slider") has no accessible
@@ -160,6 +161,10 @@ class LabelledSlider(pn.reactive.ReactiveHTML):
 
     Its Bokeh model (Panel's `ReactiveHTML`) keeps the values in the model's `data`
     (a Bokeh `DataModel`): `value`, `start`, `end`, `step`, `label`, `disabled`.
+    `write(value=...)` moves it from the server (`app.kit.texts.WrittenHTML`: within a
+    served document's `panel.io.hold`, Panel sends the change and runs no watcher of
+    the model's `value` for it; elsewhere Panel's watcher finds the parameter already
+    equal).
     """
 
     value = param.Number(default=0.0)
@@ -328,7 +333,7 @@ class ExactSlider(pn.viewable.Viewer):
         with hold():  # (the box is a Bokeh model: `held_set`)
             if (start, end) != (self.start, self.end):
                 self.param.update(start=start, end=end)
-            self._slider.value = v  # (Panel sends only what changed)
+            self._slider.write(value=v)  # (nothing when it holds v: the browser's move)
             self._entry.value = self.text(v)
 
     def set_range(self, start: float, end: float, value: float) -> None:

@@ -108,8 +108,8 @@ class Describer:
         if tab not in range(len(TAB_TITLES)):
             return
         for key, text in descriptions(c, tau, tab).items():
-            self.descriptions[key].description = text
+            self.descriptions[key].write(description=text)
         phase = int(c.phase(tau))
         if phase != self._announced and phase != Phase.NO_CONTACT:
             self._announced = phase
-            self.announcer.text = announcement(c, tau)
+            self.announcer.write(text=announcement(c, tau))
