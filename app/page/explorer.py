@@ -2,18 +2,17 @@
 
 `Explorer` builds the features of one page, the contact (`app.contact.view`), the
 Methods card (`app.methods`) and the Motor card (`app.motor`, built when first opened),
-and holds what belongs to the page rather than to a feature: the URL (`app.page.url`,
-written a moment after the last change), the message banner (refused link values, the
-Motor card's refusals), the view (the full page, or the one-screen presentation) and the
-session's end.  The layout takes the features' views (`app.page.layout`,
-`app.page.presentation`); every number comes from `core` through the features.
+and holds what belongs to the page rather than to a feature: the URL (`app.page.url`:
+sent with each change, written into the address bar by the browser a moment after the
+last), the message banner (refused link values, the Motor card's refusals), the view
+(the full page, or the one-screen presentation) and the session's end.  The layout
+takes the features' views (`app.page.layout`, `app.page.presentation`); every number
+comes from `core` through the features.
 """
 
 from __future__ import annotations
 
 import html
-import time
-from functools import partial
 
 import panel as pn
 import param
@@ -53,7 +52,9 @@ class Explorer(param.Parameterized):
         self.view_name, message = url.view_of(parts.view)
         self.messages += message
         self._motor_query = parts.motor  # (applied when the Motor card is built)
-        self._url_pending, self._url_due = False, 0.0
+        #: the page's URL query, in the browser's address bar
+        self.url_writer = url.UrlWriter(name="url_writer", delay_ms=round(URL_DELAY_S * 1000))
+        self._url_query: dict[str, str] | None = None  # (the query it holds)
         self._own: dict | None = None  # the contact's inputs while it follows the rotor
         self._following = False  # (a change made by following, not by the user)
 
@@ -159,27 +160,15 @@ class Explorer(param.Parameterized):
                         self.view_name)
 
     def write_url(self) -> None:
-        """Put the parameters in the page's URL, URL_DELAY_S after the last change.
-
-        Every URL change is a round trip (the browser pushes the history entry and
-        reports the new location back); during a slider drag it would compete with the
-        plots for the browser, so a burst of changes writes the URL once, at its end.
-        """
-        doc = pn.state.curdoc
-        if self.location is None or doc is None:
-            return  # (no page: no URL)
-        self._url_due = time.monotonic() + URL_DELAY_S
-        if not self._url_pending:
-            self._url_pending = True
-            doc.add_timeout_callback(partial(self._flush_url, doc), int(URL_DELAY_S * 1000))
-
-    def _flush_url(self, doc) -> None:
-        wait = self._url_due - time.monotonic()
-        if wait > 0.005:  # changed again meanwhile: wait for the end of the burst
-            doc.add_timeout_callback(partial(self._flush_url, doc), int(wait * 1000))
-            return
-        self._url_pending = False
-        self.location.search = "?" + url.encode(self.query())
+        """Put the parameters in the page's URL (`app.page.url.UrlWriter`): the query goes
+        to the browser with the change that makes it, and the browser writes it into the
+        address bar URL_DELAY_S after the last change (during a slider drag, once at its
+        end: it would compete with the plots for the browser).  A query equal to the
+        last one written is not written again (a move changes several parameters)."""
+        query = self.query()
+        if query != self._url_query:
+            self._url_query = query
+            self.url_writer.write(query=[[k, v] for k, v in query.items()])
 
     # -------------------------------------------------------------------- page
 
@@ -189,11 +178,11 @@ class Explorer(param.Parameterized):
         if self.view_name == presentation.VIEW:
             return presentation.presentation(self.contact, self.message,
                                              self.describer.descriptions,
-                                             self.describer.announcer)
+                                             self.describer.announcer, [self.url_writer])
         return layout.page(self.contact, self.message,
                            [self.contact.fig6_card, self.methods.view(), self.motor_card,
                             self.dem], self.describer.descriptions,
-                           self.describer.announcer)
+                           self.describer.announcer, [self.url_writer])
 
     def servable(self, page: pn.Column | None = None) -> pn.Column:
         """Mark the page servable in the session being built (`app.page.guard`).

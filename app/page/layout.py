@@ -17,7 +17,7 @@ announcing a change of phase, and the curve tabs are a keyboard-operable tab lis
 from __future__ import annotations
 
 import html
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import panel as pn
@@ -232,7 +232,8 @@ def described(pane: pn.viewable.Viewable, key: str,
 def page(contact: ContactView, message: pn.viewable.Viewable,
          cards: list[pn.viewable.Viewable],
          descriptions: Mapping[str, pn.viewable.Viewable] | None = None,
-         announcer: pn.viewable.Viewable | None = None) -> pn.Column:
+         announcer: pn.viewable.Viewable | None = None,
+         unseen: Sequence[pn.viewable.Viewable] = ()) -> pn.Column:
     """The explorer's page: a header, the controls in a sidebar, the two spheres with the
     animation's controls beside it, the other scenes beside or below them (a plain Panel
     layout: a template's header, modal and theming tripled the server's work per page
@@ -240,7 +241,8 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
     gives the scenes and controls, `message` is the page's banner, `cards` the cards
     below the scenes (Fig. 6 in full, Methods, Motor); `descriptions` the plots' names
     and descriptions for a screen reader (by `app.page.describe.PLOT_NAMES`' keys),
-    `announcer` the live region that announces a change of phase."""
+    `announcer` the live region that announces a change of phase, `unseen` components
+    with nothing to show (out of sight: the URL's writer)."""
     ui = contact.controls
     descriptions = descriptions or {}
     sidebar = [
@@ -267,6 +269,7 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
     main = [
         message,
         *([announcer] if announcer is not None else []),
+        *unseen,
         PlotGestures(),
         pn.FlexBox(
             card(*described(pn.pane.Bokeh(contact.traction.figure,

@@ -27,7 +27,7 @@ their ranges).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import panel as pn
 from bokeh.models import Button as BokehButton
@@ -156,10 +156,11 @@ def controls(contact: ContactView) -> Landmark:
 
 def presentation(contact: ContactView, message: pn.viewable.Viewable,
                  descriptions: Mapping[str, pn.viewable.Viewable] | None = None,
-                 announcer: pn.viewable.Viewable | None = None) -> pn.Column:
+                 announcer: pn.viewable.Viewable | None = None,
+                 unseen: Sequence[pn.viewable.Viewable] = ()) -> pn.Column:
     """The one-screen page of `contact`'s scenes and controls, with the page's banner
-    `message`; `descriptions` and `announcer` as for `app.page.layout.page` (out of
-    sight: they take no room), and the same play / pause key."""
+    `message`; `descriptions`, `announcer` and `unseen` as for `app.page.layout.page`
+    (out of sight: they take no room), and the same play / pause key."""
     spheres = contact.spheres.figure
     contact.spheres.badge.glyph.text_font_size = BADGE_FONT
     traction, disc = contact.traction.figure, contact.disc.figure
@@ -176,10 +177,11 @@ def presentation(contact: ContactView, message: pn.viewable.Viewable,
     slot = CurveSlot(contact, projector)
     rims = Rims(aspect(spheres), SPHERES_RIM, aspect(disc), DISC_RIM)
     # (out of sight, out of the grid: `app.kit.style.VISUALLY_HIDDEN_CSS`)
-    unseen = [*(descriptions or {}).values(), *([announcer] if announcer is not None else [])]
+    hidden = [*(descriptions or {}).values(), *([announcer] if announcer is not None else []),
+              *unseen]
     scenes = pn.Column(
         pn.pane.Bokeh(spheres), pn.pane.Bokeh(traction), pn.pane.Bokeh(disc), slot.pane,
-        *unseen, css_classes=["pp-scenes"], stylesheets=[scenes_css(rims)], margin=0)
+        *hidden, css_classes=["pp-scenes"], stylesheets=[scenes_css(rims)], margin=0)
     main = Landmark(object=scenes, role="main", css_classes=["pp-main"], margin=0,
                     stylesheets=["#region { height: 100%; }"])
     message.css_classes = [*message.css_classes, "pp-message"]

@@ -3,17 +3,22 @@
 A query holds the contact's keys (`app.contact.state.QUERY_KEYS`), the Motor card's
 (`motor_*`, `app.motor`) and the view (`view=present`).  `split` sorts a request's
 arguments by feature; each feature validates its own part (every refused value becomes a
-message, its default kept); `join` and `encode` write them back, so that a link restores
-the page exactly.  The URL writer never writes a value its reader would refuse: every
-value comes from a feature's state, which holds accepted values only.
+message, its default kept); `join` writes them back (`UrlWriter` puts them in the address
+bar), so that a link restores the page exactly.  The URL writer never writes a value its
+reader would refuse: every value comes from a feature's state, which holds accepted
+values only.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from urllib.parse import urlencode
+from typing import ClassVar
+
+import param
 
 from app.contact.state import ExplorerState, parse_query, query_value
+from app.kit.style import VISUALLY_HIDDEN_CSS
+from app.kit.texts import WrittenHTML
 from app.motor import PREFIX as MOTOR_PREFIX
 from app.page.presentation import VIEW
 
@@ -66,6 +71,42 @@ def join(contact: dict[str, str], motor: dict[str, str], view: str) -> dict[str,
     return {**contact, **motor, **({"view": view} if view else {})}
 
 
-def encode(query: dict[str, str]) -> str:
-    """The query as the URL's search string (without the '?')."""
-    return urlencode(query)
+
+#: JavaScript of `UrlWriter`: `delay_ms` after the last change of the query, the address
+#: bar shows it: the first time in place of the link the page was opened with (which a
+#: refused value may have changed), then as a new history entry.
+_WRITE_URL = """
+if (state.timer != null) { clearTimeout(state.timer); }
+state.timer = setTimeout(() => {
+  state.timer = null;
+  const search = data.query.length ? "?" + new URLSearchParams(data.query).toString() : "";
+  if (window.location.search !== search) {
+    const url = window.location.pathname + search + window.location.hash;
+    if (state.written) { window.history.pushState({}, "", url); }
+    else { window.history.replaceState(window.history.state, "", url); }
+  }
+  state.written = true;
+}, data.delay_ms);
+"""
+
+
+class UrlWriter(WrittenHTML):
+    """The page's URL query (`query`, its (key, value) pairs in order), written into the
+    browser's address bar `delay_ms` after its last change (`write(query=...)` changes
+    it; pairs, not a text: Panel would write a text's '&' as '&amp;' on the page).
+
+    Every change of the query is one property in the message of the change that made it
+    (Panel's `Location` would send it in a message of its own, and the browser would
+    send the new address back); a slider drag leaves one history entry, at its end.
+    Nothing to see: out of sight, like a live region."""
+
+    query = param.List(default=[], doc="the query's [key, value] pairs, in order")
+    delay_ms = param.Integer(default=400, bounds=(0, None))
+
+    _template = '<div id="url"></div>'
+    _scripts: ClassVar[dict[str, str]] = dict.fromkeys(("render", "query"), _WRITE_URL)
+
+    def __init__(self, **params) -> None:
+        params["stylesheets"] = [VISUALLY_HIDDEN_CSS, *params.get("stylesheets", [])]
+        params.setdefault("margin", 0)
+        super().__init__(**params)

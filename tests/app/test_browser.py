@@ -91,6 +91,30 @@ def test_keyboard_slider_changes_plot_data(browser, url) -> None:
     page.close()
 
 
+def test_a_burst_of_moves_leaves_one_history_entry(browser, url) -> None:
+    """The address bar follows a burst of slider moves once, at its end, as one new
+    history entry (`app.page.url.UrlWriter`: the query comes with each move's data, the
+    browser writes it URL_DELAY_S after the last); Back returns to the link before."""
+    page, console = open_explorer(browser, url)
+    page.wait_for_timeout(1500)  # the page's own link written (in place), if it must be
+    before = page.evaluate("() => [history.length, location.search]")
+    handle = page.locator(".slider-psi input[type=range]")
+    handle.focus()
+    for _ in range(5):  # (the pauses are the test's subject: a burst, moves 100 ms apart)
+        page.keyboard.press("ArrowRight")
+        page.wait_for_timeout(100)
+    settled(page, "force", "T")
+    psi = psi_of(page)
+    page.wait_for_function("(p) => location.search.includes('psi=' + p)", arg=repr(psi),
+                           timeout=5000)
+    page.wait_for_timeout(1500)  # (time let pass on purpose: no further entry may come)
+    assert page.evaluate("() => history.length") == before[0] + 1
+    page.go_back()
+    page.wait_for_function("(s) => location.search === s", arg=before[1], timeout=5000)
+    assert errors(console) == []
+    page.close()
+
+
 def psi_of(page) -> float:
     """psi as the page's psi slider holds it (exact)."""
     return page.evaluate("() => __psi()")

@@ -200,9 +200,10 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
     show psi, the caption drawn on the traction canvas and the derived-quantities table's
     text; the curve scenes of closed tabs send nothing (they catch up when opened).  No
     other text pane, no range, no title (each makes the browser restyle or lay out the
-    page again); the number box shows the slider's value.  (The slider's own value is in
-    the set because the move is made here, server side; Panel does not send a browser's
-    change back.)"""
+    page again); the number box shows the slider's value; the page's URL query goes with
+    them (`app.page.url.UrlWriter`: the browser writes it into the address bar).  (The
+    slider's own value is in the set because the move is made here, server side; Panel
+    does not send a browser's change back.)"""
     doc = Document()
     ex.view().server_doc(doc)
     # leaves the preset: the preset menu changes this once
@@ -227,7 +228,9 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
                                   for k in ("spheres", "traction", "disc", "curves"))]
              if m.name == name and attr in m.properties()}
     assert len(texts) == 5
+    url = doc.get_model_by_name("url_writer")
     assert changed == data | texts | {("Label", "traction_caption", "text"),
+                                      (type(url).__name__, url.name, "query"),
                                       ("Label", "spheres_rest_note", "text"),
                                       (type(slider).__name__, slider.name, "value"),
                                       (type(theta).__name__, theta.name, "value"),

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import asyncio
 import gc
+import json
 import sys
 import threading
 import time
@@ -181,6 +182,54 @@ def test_a_slider_move_comes_back_as_one_message(served) -> None:
     assert len(patches) == 1, f"a move came back as {len(patches)} messages"
     # the psi box's text (a string, where the slider's value is a number), with the plots
     assert f'"attr":"value","new":"{psi:.6g}"' in patches[0]
+
+
+def test_a_slider_move_sends_its_url_in_its_one_message(served) -> None:
+    """The page's URL query travels in the move's one message (`app.page.url.UrlWriter`:
+    the browser writes it into the address bar), and no message follows it, the URL's
+    delay (`URL_DELAY_S`) and more later: every message costs the server a serializer
+    over the whole document."""
+    url, _ = served
+    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
+    from load_test import Session
+
+    from app.page.explorer import URL_DELAY_S
+
+    async def move() -> tuple[list[str], list[str], float]:
+        session = Session(url, AsyncHTTPClient(), 10.0, None)
+        await session.open()
+        session._reader.cancel()  # read the replies here instead
+        try:
+            while True:  # what the page's load sends, until a quiet 0.5 s
+                try:
+                    await asyncio.wait_for(session._read(), 0.5)
+                except TimeoutError:
+                    break
+            await session.move()
+            patches = []
+            while not any(session.force_ref in p for p in patches):
+                header, content = await asyncio.wait_for(session._read(), 10)
+                if header["msgtype"] == "PATCH-DOC":
+                    patches.append(content)
+            later = []
+            deadline = time.monotonic() + 3 * URL_DELAY_S + 0.5
+            while (left := deadline - time.monotonic()) > 0:
+                try:
+                    header, content = await asyncio.wait_for(session._read(), left)
+                except TimeoutError:
+                    break
+                if header["msgtype"] == "PATCH-DOC":
+                    later.append(content)
+            return patches, later, session.value
+        finally:
+            session.close()
+
+    patches, later, psi = asyncio.run(move())
+    assert len(patches) == 1, f"a move came back as {len(patches)} messages"
+    assert later == [], f"{len(later)} messages followed the move's: {later}"
+    query = [e["new"] for e in json.loads(patches[0])["events"] if e.get("attr") == "query"]
+    assert len(query) == 1, "the move's message holds no URL query"
+    assert ["psi", repr(psi)] in query[0]
 
 
 def test_a_session_built_for_its_websocket_alone_has_the_servers_stylesheets(served) -> None:
