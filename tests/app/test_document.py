@@ -195,6 +195,54 @@ def test_moving_psi_sends_only_the_impulse_marker(ex: Explorer) -> None:
     assert_sources_match_core(ex)
 
 
+def _same(a: object, b: object) -> bool:
+    """Whether two property values are equal (data columns element by element)."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_same(a[k], b[k]) for k in a)
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        a, b = np.asarray(a), np.asarray(b)
+        if a.dtype.kind in "fiu" and b.dtype.kind in "fiu":
+            return np.array_equal(a, b, equal_nan=True)
+        return a.shape == b.shape and all(_same(x, y) for x, y in zip(a, b, strict=True))
+    if isinstance(a, list | tuple) and isinstance(b, list | tuple):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b, strict=True))
+    if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
+        return True
+    return type(a) is type(b) and a == b
+
+
+def _values(doc: Document) -> dict:
+    """Every property value of every model of `doc` (data columns copied)."""
+    out = {}
+    for m in doc.models:
+        for k in m.properties_with_values(include_defaults=True):
+            v = getattr(m, k)
+            if isinstance(v, dict):
+                v = {c: np.array(x, copy=True) if isinstance(x, np.ndarray) else
+                     list(x) if isinstance(x, list) else x for c, x in v.items()}
+            out[m.id, k] = list(v) if isinstance(v, list) else v
+    return out
+
+
+@pytest.mark.parametrize("psi", [2.51, 0.8, 7.0])
+def test_a_psi_move_sets_only_what_changes(ex: Explorer, psi: float) -> None:
+    """Every property a psi move sends holds a new value: each costs the server its
+    serialization (and the browser its work), so what did not change is not set."""
+    doc = Document()
+    ex.view().server_doc(doc)
+    ex.contact.controls.psi_slider.value = 2.5  # (leaves the preset)
+    before = _values(doc)
+    events = []
+    doc.on_change(events.append)
+    ex.contact.controls.psi_slider._slider.value = psi  # as a move in the browser arrives
+    assert events
+    unchanged = [(type(e.model).__name__, e.model.name, getattr(e, "attr", "data"))
+                 for e in events
+                 if _same(before.get((e.model.id, getattr(e, "attr", "data"))),
+                          getattr(e.model, getattr(e, "attr", "data")))]
+    assert unchanged == []
+
+
 def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> None:
     """What a slider move sends decides the browser's work: new data for the plots that
     show psi, the caption drawn on the traction canvas and the derived-quantities table's
