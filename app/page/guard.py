@@ -25,6 +25,7 @@ import panel as pn
 from panel.io.location import Location
 
 from app.page.explorer import Explorer
+from app.page.memory import SessionMemory
 
 log = logging.getLogger(__name__)
 
@@ -128,6 +129,9 @@ class BuildLimit:
 #: The page builds of this server process, per client address.
 BUILDS = BuildLimit()
 
+#: The open sessions of this server process, kept out of the garbage collector's walks.
+MEMORY = SessionMemory()
+
 
 def refusal_page(seconds: float) -> pn.Column:
     """The page a client gets past its page builds: what happened and when to retry."""
@@ -148,7 +152,9 @@ def serve_page() -> None:
     """Build the page of the session being created (the server's application)
     from its URL, guarded as `build_page` says, and mark it servable; a client past its
     page builds (`BUILDS`) gets `refusal_page` instead, and one that has hung up while
-    its build waited for a worker nothing (its session is discarded unused)."""
+    its build waited for a worker nothing (its session is discarded unused).  A built
+    session's objects are kept out of the garbage collector's walks while it is open
+    (`MEMORY`)."""
     request = pn.state.curdoc.session_context.request
     client = str(request.remote_ip)
     if gone(request):
@@ -160,3 +166,5 @@ def serve_page() -> None:
         return
     explorer, page = build_page(pn.state.session_args, location_of(request))
     explorer.servable(page)
+    pn.state.on_session_destroyed(lambda _: MEMORY.closed())
+    MEMORY.built()

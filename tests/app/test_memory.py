@@ -1,0 +1,76 @@
+"""The open sessions are kept out of the garbage collector's walks, and what closed
+sessions leave is reclaimed (`app.page.memory.SessionMemory`)."""
+
+from __future__ import annotations
+
+import gc
+import weakref
+
+import pytest
+
+from app.page.memory import SessionMemory
+
+
+class Node:
+    """A stand-in for a document's objects: a cycle only the cyclic collector frees."""
+
+    def __init__(self) -> None:
+        self.me = self
+
+
+@pytest.fixture
+def memory():
+    gc.collect()
+    m = SessionMemory(share=0.25)
+    yield m
+    m.stop()
+    gc.collect()
+
+
+def test_a_build_freezes_what_is_alive_and_collections_pass_it_by(memory) -> None:
+    doc = Node()
+    memory.built()
+    assert gc.get_freeze_count() > 0 and not memory.sweeping
+    dead = weakref.ref(doc)
+    del doc
+    gc.collect()  # (walks what is newer than the build only)
+    assert dead() is not None
+
+
+def test_closed_sessions_are_reclaimed_once_a_quarter_of_the_open_have_closed(memory) -> None:
+    docs = []
+    for _ in range(3):
+        docs.append(Node())
+        memory.built()
+    assert memory.open == 3 and not memory.sweeping
+    refs = [weakref.ref(d) for d in docs]
+    docs.clear()
+    memory.closed()  # 1 closed of 2 open left: at least a quarter, and at least one
+    assert memory.sweeping and gc.get_freeze_count() == 0
+    gc.collect()  # the full collection the sweep waits for
+    assert not memory.sweeping
+    assert all(r() is None for r in refs)
+
+
+def test_with_many_open_one_close_does_not_sweep(memory) -> None:
+    for _ in range(40):
+        memory.built()
+    frozen = gc.get_freeze_count()
+    memory.closed()
+    assert not memory.sweeping and gc.get_freeze_count() == frozen  # 1 of 39: no sweep
+    for _ in range(9):
+        memory.closed()
+    assert memory.sweeping  # 10 closed since the last sweep, 30 open: a quarter
+
+
+def test_no_build_freezes_while_a_sweep_waits_for_its_collection(memory) -> None:
+    memory.built()
+    memory.closed()  # the only one: a sweep
+    assert memory.sweeping and gc.get_freeze_count() == 0
+    memory.built()
+    assert gc.get_freeze_count() == 0  # its garbage would be frozen again
+    gc.collect(1)  # (a younger generation's collection does not end it)
+    assert memory.sweeping
+    gc.collect()
+    memory.built()
+    assert not memory.sweeping and gc.get_freeze_count() > 0
