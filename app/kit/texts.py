@@ -60,13 +60,17 @@ class WrittenHTML(ReactiveHTML):
         changed = {k: v for k, v in values.items() if getattr(self, k) != v}
         if not changed:
             return
-        model = self.data_model(pn.state.curdoc)
+        doc = pn.state.curdoc
+        model = self.data_model(doc)
         if model is None:
             self.param.update(**changed)
             return
         with param.parameterized.discard_events(self):  # (Panel's watchers not called)
             for k, v in changed.items():
                 setattr(self, k, v)
+        if doc.callbacks.hold_value:  # (a change held already goes out with the others)
+            model.update(**changed)
+            return
         with hold():  # (outside Panel's handling of a change, Bokeh's lock may not be held)
             model.update(**changed)
 
