@@ -1,8 +1,9 @@
 // The browser's animation player (app/contact/player.py): the body of a Bokeh CustomJS
 // whose args are the frames, the sources and texts it writes; see player.py's docstring.
 // (`shown`: the tau of the frame on screen while playing, which Play / Pause reports)
+// (`watching`: the IntersectionObserver of the page's plots while playing)
 const st = window.__zharii_player || (window.__zharii_player =
-  {raf: null, held: null, writing: false, watched: new Set(), shown: null});
+  {raf: null, held: null, writing: false, watched: new Set(), shown: null, watching: null});
 if (st.raf !== null) { cancelAnimationFrame(st.raf); st.raf = null; }
 const get = (src) => (src.data instanceof Map ? Object.fromEntries(src.data) : src.data);
 // what this script changes while it plays: [model, property] (controls found on the
@@ -27,9 +28,40 @@ function put(m, a, v) {                        // shown here, not sent to the se
   try { m.setv({[a]: v}, {sync: false}); } finally { st.writing = false; }
 }
 const count = () => { const t = get(frames).tau; return t ? t.length : 0; };
+// while playing, a plot out of the viewport (or in a closed tab) is not painted
+// (BokehJS's `hold_render`); it is painted, with the frame of that moment, when it
+// comes into view, and every plot is painted again when the player stops
+function watch() {
+  if (st.watching !== null) { return; }
+  const plots = new Map();
+  for (const v of Bokeh.index.query((v) => v.model.type === "Figure"
+                                     && v.model.document === frames.document)) {
+    plots.set(v.el, v.model);
+  }
+  const observer = new IntersectionObserver((entries) => {
+    if (st.watching === null || st.watching.observer !== observer) { return; }
+    for (const e of entries) {
+      const plot = plots.get(e.target);
+      if (plot.hold_render === e.isIntersecting) {
+        plot.setv({hold_render: !e.isIntersecting}, {sync: false});
+      }
+    }
+  });
+  for (const el of plots.keys()) { observer.observe(el); }
+  st.watching = {observer, plots: [...plots.values()]};
+}
+function unwatch() {
+  if (st.watching === null) { return; }
+  st.watching.observer.disconnect();
+  for (const plot of st.watching.plots) {
+    if (plot.hold_render) { plot.setv({hold_render: false}, {sync: false}); }
+  }
+  st.watching = null;
+}
 function stop() {                              // show what the server holds
   st.shown = null;
   if (st.raf !== null) { cancelAnimationFrame(st.raf); st.raf = null; }
+  unwatch();
   if (st.held !== null) {
     for (const [m, a, v] of st.held.values()) { put(m, a, v); }
     st.held = null;
@@ -49,6 +81,7 @@ if (K === 0) {
   return;
 }
 if (st.held === null) { st.held = new Map(); }
+watch();
 for (const [m, a] of texts) {                  // what the server holds, kept up to date
   const k = key(m, a);
   if (!st.held.has(k)) { st.held.set(k, held(m, a)); }

@@ -23,6 +23,12 @@ script keeps the tau of the frame on screen (`window.__zharii_player.shown`), wh
 Play / Pause reports with a press (`app.contact.play_button`): a pause lands on that
 frame.  The server follows the same clock (progress = start + speed * elapsed /
 CONTACT_SECONDS) for the tau a speed change or a parameter change lands on.
+
+While it plays, a plot out of the viewport (or in a closed tab) is not painted: the
+script holds it (BokehJS's `hold_render`, set in the browser only) while an
+IntersectionObserver sees it outside the viewport, so that it is painted, with the frame
+of that moment, as it comes into view, and every plot is painted when the player stops.
+Its sources still change with every frame.
 """
 
 from __future__ import annotations

@@ -103,3 +103,51 @@ def test_the_keyboard_stays_on_play_pause(browser, url) -> None:
     assert page.evaluate(JS_DEEP_FOCUS) == ["BUTTON", PAUSE]
     assert page.evaluate("() => window.scrollY") == y
     page.close()
+
+
+
+#: JavaScript: {title: [hold_render, in the viewport]} of the page's plots laid out (in
+#: an open tab).
+JS_HELD = """() => Object.fromEntries(__views((v) => v.model != null
+    && v.model.type === "Figure" && v.el.getBoundingClientRect().width > 0)
+  .map((v) => { const r = v.el.getBoundingClientRect();
+                return [v.model.title.text,
+                        [v.model.hold_render, r.bottom > 0 && r.top < innerHeight]]; }))"""
+
+#: JavaScript: scroll plot `title` into the middle of the viewport.
+JS_SCROLL_TO = """(title) => __views((v) => v.model != null && v.model.type === "Figure"
+  && v.model.title.text === title)[0].el.scrollIntoView({block: "center"})"""
+
+FORCE = "Tangential force T / T₀"
+
+
+def held_out_of_view(page) -> bool:
+    """Whether exactly the plots out of the viewport are held."""
+    return all(h == (not shown) for h, shown in page.evaluate(JS_HELD).values())
+
+
+def test_plots_out_of_view_wait_while_playing(browser, url) -> None:
+    """While playing, every frame was painted in every plot, those below the viewport
+    too: they are held (BokehJS's hold_render) until they come into view, and every plot
+    is painted again at the pause; their sources follow the frames all along."""
+    page, console = open_explorer(browser, url, height=900)
+    held = page.evaluate(JS_HELD)
+    assert held[FORCE] == [False, False]  # below the viewport, not held
+    assert not any(h for h, _ in held.values())
+    page.get_by_role("button", name=PLAY).click()
+    wait_until(lambda: frames_sent(page), what="the player's frames")
+    wait_until(lambda: held_out_of_view(page) and page.evaluate(JS_HELD)[FORCE][0],
+               what="the plots out of view to be held")
+    marker = page.evaluate("() => __col('force_marker', 'x')")
+    wait_until(lambda: page.evaluate("() => __col('force_marker', 'x')") != marker,
+               what="the held plot's marker to follow the frames")
+    page.evaluate(JS_SCROLL_TO, FORCE)
+    wait_until(lambda: held_out_of_view(page) and page.evaluate(JS_HELD)[FORCE] == [False, True],
+               what="the plot come into view to be painted, those gone out held")
+    assert any(h for h, _ in page.evaluate(JS_HELD).values())
+    page.get_by_role("button", name=PAUSE).click()
+    wait_until(lambda: not frames_sent(page), what="the player to stop")
+    wait_until(lambda: not any(h for h, _ in page.evaluate(JS_HELD).values()),
+               what="every plot painted again")
+    assert [m for m in console if "error" in m.lower()] == []
+    page.close()
