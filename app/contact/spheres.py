@@ -273,7 +273,7 @@ class SpheresScene(Scene):
         # upper sphere
         follow_clock(s["spheres_forces"])
         stamp(fig, sep="\n", x=1.57, y=2.07, x_units="data", y_units="data",
-                      text_align="right", text_baseline="top", level=FRAME_LEVEL)
+              text_align="right", text_baseline="top")
         style_figure(fig)
         self.figure = fig
 
