@@ -6,7 +6,10 @@ numbers, not models.  Sources are named after their scene, so that tests and the
 find them with `get_model_by_name`.  The helpers here make every figure look alike
 (`new_figure`, `style_figure`, `draw`, `add_legend`) and fit its ranges to the data
 (`fit_range`, `nice_step`); `png_name` names a plot's PNG download and `stamp`
-draws in it the contact and the time it shows.
+draws in it the contact and the time it shows.  What changes with a frame of the
+animation is drawn at `FRAME_LEVEL`, where the browser repaints only a plot's overlay
+layer; `style_figure` moves a figure's glyphs from there into the clipped
+`CLIPPED_LEVEL` once the user pans or zooms it (`clip_when_moved`).
 """
 
 from __future__ import annotations
