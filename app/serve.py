@@ -5,7 +5,8 @@ A `panel serve app/main.py` with the settings a deployment needs fixed in one pl
 - **Pages built off the event loop.** The application is a function
   (`applications`), whose documents Bokeh builds on a worker thread: a page build
   (~0.4 s of CPU) shares the interpreter with the sessions already open instead of
-  stopping them.
+  stopping them; and a thread holds the interpreter for at most 0.5 ms while another
+  waits (``SWITCH_INTERVAL_S``), so that their moves are not held up by it.
 - **Security headers on every HTML page.** A Content-Security-Policy with a fresh nonce
   per response: the page's own inline scripts carry the nonce, so a script injected into
   the page (e.g. an ``<img onerror=...>`` smuggled through a URL) does not run.  BokehJS
@@ -65,6 +66,13 @@ COMPILE_SECONDS = 20
 #: How long the server waits, once the closed form is loaded, for the process loading
 #: the Methods and Motor kernels (s): with numba's cache filled it is done by then.
 METHODS_WAIT_S = 4.0
+
+#: How long a thread may hold the interpreter while another waits for it (s; Python's
+#: default is 0.005).  A psi move passes between the event loop and Bokeh's worker
+#: threads a dozen times; beside a page build or a PULL-DOC reply being serialized
+#: (pure Python, CPU-bound) each hand-off waited up to the whole interval, which
+#: doubled the open sessions' latency (benchmarks/app/load_test.py --abuse, docs/deploy.md).
+SWITCH_INTERVAL_S = 0.0005
 
 #: Session lifetimes and limits, in the units Bokeh's `Server` takes.
 SESSION = {
@@ -298,6 +306,7 @@ def main(argv: list[str] | None = None) -> None:
     except subprocess.TimeoutExpired:
         log.info("the Methods and Motor cards' kernels compile in the background")
         threading.Thread(target=load_methods, name="warm-methods", daemon=True).start()
+    sys.setswitchinterval(SWITCH_INTERVAL_S)
     gc.freeze()  # the modules' objects: out of every later garbage collection's walk
     server = get_server(applications(), start=False, **server_options(args))
     server.start()
