@@ -4,6 +4,8 @@ explanation of the never-opening ends and an efficiency curve resolved to its be
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 import pytest
 from explorer_browser import column, open_explorer
@@ -37,12 +39,21 @@ def test_the_motor_card_opens_computes_its_curve_and_drives_the_scenes_when_aske
     assert column(page, "force", "T") == T  # opening the card leaves the contact alone
     page.get_by_label("Show the rotor's contact (at x₀) in the plots above").check()
     T = wait_for_new(page, "force", "T", T)  # the scenes above show the rotor's contact
-    psi = psi_of(page)
-    c = Contact(psi, page.evaluate("() => __slider('tau0').value"),
-                mu=page.evaluate("() => __slider('mu').value"),
-                nu=page.evaluate("() => __slider('nu').value"))
-    np.testing.assert_allclose(T, c.tangential_force(c.tau_grid(CURVE_POINTS)), rtol=1e-12,
-                               atol=1e-15)
+
+    def shown() -> tuple[list[float], np.ndarray]:  # T drawn, and T of the sliders shown
+        c = Contact(psi_of(page), page.evaluate("() => __slider('tau0').value"),
+                    mu=page.evaluate("() => __slider('mu').value"),
+                    nu=page.evaluate("() => __slider('nu').value"))
+        return column(page, "force", "T"), c.tangential_force(c.tau_grid(CURVE_POINTS))
+
+    # (the sliders and the plot are read one after the other: read until one reading
+    # finds them at rest together, the rotor's contact having fully arrived)
+    deadline = time.monotonic() + 20
+    T, expected = shown()
+    while not np.allclose(T, expected, rtol=1e-12, atol=1e-15) and time.monotonic() < deadline:
+        page.wait_for_timeout(100)
+        T, expected = shown()
+    np.testing.assert_allclose(T, expected, rtol=1e-12, atol=1e-15)
     page.wait_for_function("() => location.search.includes('motor_x0=')", timeout=10_000)
     assert errors(console) == []
     page.close()
