@@ -149,51 +149,12 @@ def test_slider_moves_in_one_session_hold_no_more_python_memory(served) -> None:
     assert grown < 100_000, f"1000 moves left {grown} bytes of Python objects behind"
 
 
-def test_a_slider_move_comes_back_as_one_message(served) -> None:
-    """A psi move from a loaded page (benchmarks/app/load_test.py's client sends
-    `document_ready`, as BokehJS does) comes back as ONE message holding both the psi
-    box's new text and the plots' new data (app/widgets.py applies the browser's value
-    under `hold`): Bokeh builds each message's serializer over the whole document."""
-    url, _ = served
+def _one_move(url: str, listen: float = 0.0) -> tuple[list[str], list[str], float]:
+    """One psi move from a loaded page (benchmarks/app/load_test.py's client, which sends
+    `document_ready` as BokehJS does): the PATCH-DOCs up to the one with the plots' new
+    data, those that follow within `listen` s, and the psi sent."""
     sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
     from load_test import Session
-
-    async def move() -> tuple[list[str], float]:
-        session = Session(url, AsyncHTTPClient(), 10.0, None)
-        await session.open()
-        session._reader.cancel()  # read the replies here instead
-        try:
-            while True:  # what the page's load sends, until a quiet 0.5 s
-                try:
-                    await asyncio.wait_for(session._read(), 0.5)
-                except TimeoutError:
-                    break
-            await session.move()
-            patches = []
-            while not any(session.force_ref in p for p in patches):
-                header, content = await asyncio.wait_for(session._read(), 10)
-                if header["msgtype"] == "PATCH-DOC":
-                    patches.append(content)
-            return patches, session.value
-        finally:
-            session.close()
-
-    patches, psi = asyncio.run(move())
-    assert len(patches) == 1, f"a move came back as {len(patches)} messages"
-    # the psi box's text (a string, where the slider's value is a number), with the plots
-    assert f'"attr":"value","new":"{psi:.6g}"' in patches[0]
-
-
-def test_a_slider_move_sends_its_url_in_its_one_message(served) -> None:
-    """The page's URL query travels in the move's one message (`app.page.url.UrlWriter`:
-    the browser writes it into the address bar), and no message follows it, the URL's
-    delay (`URL_DELAY_S`) and more later: every message costs the server a serializer
-    over the whole document."""
-    url, _ = served
-    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
-    from load_test import Session
-
-    from app.page.explorer import URL_DELAY_S
 
     async def move() -> tuple[list[str], list[str], float]:
         session = Session(url, AsyncHTTPClient(), 10.0, None)
@@ -212,7 +173,7 @@ def test_a_slider_move_sends_its_url_in_its_one_message(served) -> None:
                 if header["msgtype"] == "PATCH-DOC":
                     patches.append(content)
             later = []
-            deadline = time.monotonic() + 3 * URL_DELAY_S + 0.5
+            deadline = time.monotonic() + listen
             while (left := deadline - time.monotonic()) > 0:
                 try:
                     header, content = await asyncio.wait_for(session._read(), left)
@@ -224,7 +185,27 @@ def test_a_slider_move_sends_its_url_in_its_one_message(served) -> None:
         finally:
             session.close()
 
-    patches, later, psi = asyncio.run(move())
+    return asyncio.run(move())
+
+
+def test_a_slider_move_comes_back_as_one_message(served) -> None:
+    """A psi move comes back as ONE message holding both the psi box's new text and the
+    plots' new data (app/widgets.py applies the browser's value under `hold`): Bokeh
+    builds each message's serializer over the whole document."""
+    patches, _, psi = _one_move(served[0])
+    assert len(patches) == 1, f"a move came back as {len(patches)} messages"
+    # the psi box's text (a string, where the slider's value is a number), with the plots
+    assert f'"attr":"value","new":"{psi:.6g}"' in patches[0]
+
+
+def test_a_slider_move_sends_its_url_in_its_one_message(served) -> None:
+    """The page's URL query travels in the move's one message (`app.page.url.UrlWriter`:
+    the browser writes it into the address bar), and no message follows it, the URL's
+    delay (`URL_DELAY_S`) and more later: every message costs the server a serializer
+    over the whole document."""
+    from app.page.explorer import URL_DELAY_S
+
+    patches, later, psi = _one_move(served[0], listen=3 * URL_DELAY_S + 0.5)
     assert len(patches) == 1, f"a move came back as {len(patches)} messages"
     assert later == [], f"{len(later)} messages followed the move's: {later}"
     query = [e["new"] for e in json.loads(patches[0])["events"] if e.get("attr") == "query"]
