@@ -1,5 +1,5 @@
 """The log filter of a closed websocket's queued messages (app/page/limits.py) and the
-abuse benchmark's pure helpers (benchmarks/app/load_test.py)."""
+abuse benchmark's pure helpers (benchmarks/app/abuse.py)."""
 
 from __future__ import annotations
 
@@ -26,7 +26,7 @@ from app.page.limits import (
 )
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks" / "app"))
-import load_test
+import abuse
 
 
 def detached_error() -> tuple:
@@ -144,10 +144,10 @@ def test_abuse_summary_and_table():
             dict(window("nan", 140.0, sent=100), **{"for": "nan"}),
             dict(window("baseline", 80.0), **{"for": "pull-doc"}),
             dict(window("pull-doc", 400.0, answered=20, replies=69), **{"for": "pull-doc"})]
-    summary = load_test.abuse_summary(rows)
+    summary = abuse.abuse_summary(rows)
     assert [(s["kind"], s["ratio"], s["met"]) for s in summary] == [
         ("nan", pytest.approx(1.4), True), ("pull-doc", pytest.approx(5.0), False)]
-    table = load_test.abuse_table(rows).splitlines()
+    table = abuse.abuse_table(rows).splitlines()
     assert len(table) == 4
     assert table[2].startswith("| nan | 50 / 70 | 100 / 140 | 1.40 | yes | 60/66 / 60/100 |")
     assert table[3].startswith("| pull-doc | 40 / 200 | 80 / 400 | 5.00 | **no** |")
@@ -161,10 +161,10 @@ def test_methods_controls_found_in_the_cards_patch():
         {"type": "object", "name": "panel.models.widgets.CustomSelect", "id": "p2",
          "attributes": {"options": [["1.0", "default"], ["16.0", "16 × default"]]}},
         {"type": "object", "name": "CheckboxGroup", "id": "p3",
-         "attributes": {"labels": [load_test.LIVE_LABEL]}}]}]}
-    assert load_test.methods_controls([json.dumps(patch)]) == {
+         "attributes": {"labels": [abuse.LIVE_LABEL]}}]}]}
+    assert abuse.methods_controls([json.dumps(patch)]) == {
         "methods": ("p1", ["mdr", "annulus"]), "resolution": ("p2", "16.0"),
         "live": ("p3", [0])}
     with pytest.raises(LookupError, match="live"):
         patch["events"][0]["new"].pop()
-        load_test.methods_controls([json.dumps(patch)])
+        abuse.methods_controls([json.dumps(patch)])

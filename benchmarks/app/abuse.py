@@ -1,0 +1,370 @@
+"""The abuse mode of the load test (``benchmarks/app/load_test.py --abuse``, issue 22).
+
+One probe session (`load_test.Session`) moves ψ every ``--interval`` s; per kind of
+abusive client (`ABUSE_KINDS`: websockets with invented session ids, PULL-DOC spam, the
+Methods card at 16x with live recompute, NaN as ψ, a page-load loop) it is recorded for
+a window alone, then for a window beside one abusive client of that kind, interleaved
+in one run against one server.  Per kind: the probe's p50/p95 alone and beside, their
+p95 ratio against the 1.5x target (`ABUSE_TARGET`), moves answered, the server's CPU
+and the lines it logged.  Run through load_test.py:
+
+    python benchmarks/app/load_test.py --abuse --window 30
+    python benchmarks/app/load_test.py --abuse pull-doc nan --window 20
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import random
+import sys
+import time
+from pathlib import Path
+
+from tornado.httpclient import AsyncHTTPClient
+from tornado.websocket import WebSocketClosedError
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from load_test import Session, Stats, _strings, models_of, pct, usage
+
+#: The abusive clients of `--abuse`, in the order they run (the page loops last: they
+#: use up the page builds of the address every client here shares, 127.0.0.1).
+#: ``page-loop`` is recorded from the loop's first request (the address's burst of page
+#: builds, `app.page.guard.BUILDS`, is spent in the window); ``page-loop-steady`` from
+#: its first refused page on (one build per refill, refusals between).
+ABUSE_KINDS = ("invented-ids", "pull-doc", "methods-16x", "nan", "page-loop",
+               "page-loop-steady")
+
+#: The probe's p95 under abuse may be at most this many times its baseline (issue 22).
+ABUSE_TARGET = 1.5
+
+#: How fast the abusive clients send at most (a bound, not a pace: each also waits for
+#: its socket): PULL-DOC requests and NaN values per second.
+PULL_DOC_RATE = 100.0
+NAN_RATE = 20.0
+
+#: The values the `nan` client sends as ψ, in turn: bare JSON (Python's json writes
+#: NaN and Infinity) and Bokeh's own encoding of non-finite numbers.
+NAN_VALUES = (float("nan"), float("inf"), float("-inf"),
+              {"type": "number", "value": "nan"}, {"type": "number", "value": "+inf"})
+
+#: The title of the page a client past its page builds gets (`app.page.guard`): a
+#: server page's HTML holds its title, the document's text comes by the websocket.
+REFUSAL_TITLE = "<title>Zharii contact explorer</title>"
+METHODS_TITLE = "Methods: numerical"
+LIVE_LABEL = "Recompute live on every change"
+
+
+def methods_controls(patches: list[str]) -> dict[str, tuple[str, object]]:
+    """The Methods card's controls in the PATCH-DOCs that filled it, as {role: (model
+    id, value to set)}: every method chosen, 16x resolution, live recompute on."""
+    found: dict[str, tuple[str, object]] = {}
+    for content in patches:
+        for i, m in models_of(json.loads(content))[0].items():
+            a = m.get("attributes", {})
+            if m.get("name") == "MultiChoice" and a.get("options"):
+                found["methods"] = (i, [o[0] if isinstance(o, list) else o for o in a["options"]])
+            elif m.get("name", "").endswith("Select") and any(
+                    isinstance(o, list) and o[1].startswith("16 ") for o in a.get("options", [])):
+                found["resolution"] = (i, next(o[0] for o in a["options"]
+                                               if isinstance(o, list) and o[1].startswith("16 ")))
+            elif m.get("name") == "CheckboxGroup" and a.get("labels") == [LIVE_LABEL]:
+                found["live"] = (i, [0])
+    missing = {"methods", "resolution", "live"} - set(found)
+    if missing:
+        raise LookupError(f"the Methods card's {', '.join(sorted(missing))} not found")
+    return found
+
+
+def methods_card(doc_json: dict) -> str:
+    """The id of the Methods card (a Panel Card whose header names it) in a document."""
+    models, _ = models_of(doc_json)
+    cards = [i for i, m in models.items() if m.get("name") == "panel.models.layout.Card"
+             and any(METHODS_TITLE in t for t in _strings(m.get("attributes", {}).get("children")))]
+    if len(cards) != 1:
+        raise LookupError(f"expected one Methods card, found {len(cards)}")
+    return cards[0]
+
+
+def changed(model: str, attr: str, new) -> dict:
+    """A PATCH-DOC event setting `model`'s `attr` to `new`, as BokehJS sends it."""
+    return {"kind": "ModelChanged", "model": {"id": model}, "attr": attr, "new": new}
+
+
+async def paced(stop: asyncio.Event, rate: float):
+    """Yields at most `rate` times a second until `stop` is set."""
+    next_t = time.perf_counter()
+    while not stop.is_set():
+        yield
+        next_t = max(next_t + 1.0 / rate, time.perf_counter() - 1.0)
+        await asyncio.sleep(max(0.0, next_t - time.perf_counter()))
+
+
+async def abuse_page_loop(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
+                          counts: dict, ready: asyncio.Event | None = None) -> None:
+    """GET the page in a loop, each as soon as the previous one is answered; `ready` (if
+    given) is set at the first refused page, and only then are pages counted."""
+    while not stop.is_set():
+        r = await http.fetch(url, request_timeout=60, raise_error=False)
+        body = r.body.decode(errors="replace") if r.body else ""
+        key = ("refused" if REFUSAL_TITLE in body else "built" if r.code == 200
+               else f"HTTP {r.code}")
+        if ready is not None and not ready.is_set():
+            if key != "refused":
+                continue
+            ready.set()
+        counts[key] = counts.get(key, 0) + 1
+
+
+async def abuse_invented_ids(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
+                             counts: dict) -> None:
+    """Open websockets with made-up session ids, in turn unsigned and signed with
+    another key than the server's, each as soon as the previous one is settled."""
+    from bokeh.util.token import generate_jwt_token, generate_secret_key, generate_session_id
+
+    other_key = generate_secret_key().encode()
+    n = 0
+    while not stop.is_set():
+        n += 1
+        signed = n % 2 == 0
+        key = other_key if signed else None
+        sid = generate_session_id(secret_key=key, signed=signed)
+        token = generate_jwt_token(sid, secret_key=key, signed=signed)
+        s = Session(url, http, 5.0, None)
+        try:
+            await asyncio.wait_for(s.connect(token), 30)
+            counts["accepted"] = counts.get("accepted", 0) + 1
+        except (TimeoutError, ConnectionError, WebSocketClosedError, OSError):
+            counts["refused"] = counts.get("refused", 0) + 1
+        finally:
+            s.close()
+
+
+async def abuse_pull_doc(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
+                         counts: dict) -> None:
+    """A loaded session sending PULL-DOC requests, up to `PULL_DOC_RATE` a second,
+    without waiting for the replies (its reader takes them); closed at the end."""
+    s = Session(url, http, 5.0, None)
+    await s.open()
+    try:
+        async for _ in paced(stop, PULL_DOC_RATE):
+            if not s.alive:
+                counts["connection closed by the server"] = 1
+                break
+            await s._send("PULL-DOC-REQ", {})
+            counts["sent"] = counts.get("sent", 0) + 1
+    except WebSocketClosedError:
+        counts["connection closed by the server"] = 1
+    finally:
+        counts["replies"] = s.received.get("PULL-DOC-REPLY", 0)
+        s.close()
+
+
+async def abuse_methods_16x(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
+                            counts: dict, interval: float = 0.3) -> None:
+    """A session that opens the Methods card, chooses every method at 16x resolution
+    with live recompute on, then moves ψ every `interval` s (as the probe does)."""
+    s = Session(url, http, 5.0, None)
+    await s.open()
+    try:
+        s.patches = []
+        await s._send("PATCH-DOC", {"events": [changed(methods_card(s.doc), "collapsed",
+                                                       False)]})
+        end = time.perf_counter() + 30
+        controls = None
+        while controls is None and time.perf_counter() < end and not stop.is_set():
+            await asyncio.sleep(0.1)
+            try:
+                controls = methods_controls(s.patches)
+            except LookupError:
+                pass
+        s.patches = None
+        if controls is None:
+            counts["Methods card not filled"] = 1
+            return
+        for role in ("live", "resolution", "methods"):
+            model, value = controls[role]
+            attr = {"live": "active", "resolution": "value", "methods": "value"}[role]
+            await s._send("PATCH-DOC", {"events": [changed(model, attr, value)]})
+        counts["methods"] = len(controls["methods"][1])
+        async for _ in paced(stop, 1.0 / interval):
+            if not s.pending:
+                counts["ψ moves"] = counts.get("ψ moves", 0) + 1
+            await s.move()
+    finally:
+        s.close()
+
+
+async def abuse_nan(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
+                    counts: dict) -> None:
+    """A session sending NaN and ±inf as the ψ slider's value, up to `NAN_RATE` a
+    second; counts the server's ERROR replies."""
+    s = Session(url, http, 5.0, None)
+    await s.open()
+    try:
+        n = 0
+        async for _ in paced(stop, NAN_RATE):
+            if not s.alive:
+                counts["connection closed by the server"] = 1
+                break
+            await s._send("PATCH-DOC", {"events": [changed(s.slider, "value",
+                                                           NAN_VALUES[n % len(NAN_VALUES)])]})
+            n += 1
+        counts["sent"] = n
+    except WebSocketClosedError:
+        counts["connection closed by the server"] = 1
+    finally:
+        counts["server ERROR replies"] = s.received.get("ERROR", 0)
+        s.close()
+
+
+async def abuse_page_loop_steady(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
+                                 counts: dict, ready: asyncio.Event) -> None:
+    """`abuse_page_loop`, recorded once the address's page builds are spent."""
+    await abuse_page_loop(url, http, stop, counts, ready)
+
+
+#: The abusers that set their `ready` event themselves (the others are recorded from
+#: their start).
+PRELUDE = {"page-loop-steady": abuse_page_loop_steady}
+
+ABUSERS = {"page-loop": abuse_page_loop, "invented-ids": abuse_invented_ids,
+           "pull-doc": abuse_pull_doc, "methods-16x": abuse_methods_16x, "nan": abuse_nan,
+           **PRELUDE}
+
+
+def log_lines(log: Path | None) -> tuple[int, int]:
+    """(lines, tracebacks) in the server's log so far."""
+    if log is None or not log.exists():
+        return 0, 0
+    text = log.read_bytes()
+    return text.count(b"\n"), text.count(b"Traceback (most recent call last)")
+
+
+async def quiet_log(log: Path | None, quiet: float = 2.0, limit: float = 30.0) -> None:
+    """Wait until the server's log has not grown for `quiet` s (at most `limit` s): what
+    an abusive client leaves behind is written before the next window."""
+    end = time.perf_counter() + limit
+    last, since = log_lines(log), time.perf_counter()
+    while time.perf_counter() < end and time.perf_counter() - since < quiet:
+        await asyncio.sleep(0.25)
+        now = log_lines(log)
+        if now != last:
+            last, since = now, time.perf_counter()
+
+
+async def abuse_window(probe: Session, kind: str | None, url: str, http: AsyncHTTPClient,
+                       duration: float, interval: float, timeout: float, pids: list[int],
+                       log: Path | None) -> dict:
+    """The probe moving ψ every `interval` s for `duration` s, alone (`kind` None) or
+    beside one abusive client of `kind`; its figures, the server's CPU over the window
+    and the lines the server logged from its start until its log was quiet again."""
+    stats = Stats()
+    counts: dict = {}
+    stop, ready = asyncio.Event(), asyncio.Event()
+    task = None
+    if kind in PRELUDE:  # the abuser runs unrecorded until it says it is ready
+        task = asyncio.create_task(PRELUDE[kind](url, http, stop, counts, ready))
+        try:
+            await asyncio.wait_for(ready.wait(), 120)
+        except TimeoutError:
+            counts["not ready after 120 s"] = 1
+    lines0, tb0 = log_lines(log)
+    _, cpu0 = usage(pids)
+    t0 = time.perf_counter()
+    if kind and task is None:
+        task = asyncio.create_task(ABUSERS[kind](url, http, stop, counts))
+    probe.stats = stats
+    next_t = t0 + random.uniform(0, interval)
+    while next_t < t0 + duration:
+        await asyncio.sleep(max(0.0, next_t - time.perf_counter()))
+        await probe.move()
+        next_t += interval
+    end = time.perf_counter() + timeout
+    while probe.pending and probe.alive and time.perf_counter() < end:
+        await asyncio.sleep(0.05)
+    wall = time.perf_counter() - t0
+    _, cpu1 = usage(pids)
+    if probe.pending and probe.alive:
+        stats.error(f"no update within {timeout:g} s")
+    probe.stats = probe.pending = None
+    stop.set()
+    if task is not None:
+        try:
+            await asyncio.wait_for(task, 60)
+        except Exception as err:  # the abuser's own failure: reported with its counts
+            counts["client failed"] = f"{type(err).__name__}: {err}"[:100]
+    await quiet_log(log)
+    lines1, tb1 = log_lines(log)
+    lat = sorted(x * 1e3 for x in stats.latencies)
+    return {
+        "kind": kind or "baseline", "duration_s": round(wall, 1), "moves_sent": stats.sent,
+        "answered": len(lat), "late_ticks": stats.late, "errors": sum(stats.errors.values()),
+        "p50_ms": round(pct(lat, 50), 1), "p95_ms": round(pct(lat, 95), 1),
+        "server_cpu_pct": round(100 * (sum(cpu1.values()) - sum(cpu0.values())) / wall)
+        if pids else None,
+        "log_lines": lines1 - lines0, "tracebacks": tb1 - tb0, "abuser": counts,
+    }
+
+
+async def run_abuse(url: str, kinds: list[str], duration: float, warmup: float,
+                    interval: float, timeout: float, pids: list[int],
+                    log: Path | None) -> list[dict]:
+    """Per kind, a baseline window and then an abuse window (interleaved in one run)."""
+    AsyncHTTPClient.configure(None, max_clients=20)
+    http = AsyncHTTPClient()
+    probe = Session(url, http, timeout, None)
+    rows = []
+    try:
+        await asyncio.wait_for(probe.open(), 120)
+        print(f"[abuse] probe open; warm-up {warmup:g} s", file=sys.stderr)
+        end = time.perf_counter() + warmup
+        while time.perf_counter() < end:
+            await probe.move()
+            await asyncio.sleep(interval)
+        await quiet_log(log)
+        for kind in kinds:
+            for k in (None, kind):
+                row = await abuse_window(probe, k, url, http, duration, interval, timeout,
+                                         pids, log)
+                row["for"] = kind
+                rows.append(row)
+                print(f"[abuse] {json.dumps(row)}", file=sys.stderr)
+    finally:
+        probe.close()
+        http.close()
+    return rows
+
+
+def abuse_summary(rows: list[dict], target: float = ABUSE_TARGET) -> list[dict]:
+    """Per kind: the probe's p95 in its baseline window and beside the abuser, their
+    ratio and whether it is within `target` (rows as `run_abuse` gives them)."""
+    out = []
+    for kind in dict.fromkeys(r["for"] for r in rows):
+        base = next(r for r in rows if r["for"] == kind and r["kind"] == "baseline")
+        bad = next(r for r in rows if r["for"] == kind and r["kind"] == kind)
+        ratio = (bad["p95_ms"] / base["p95_ms"]
+                 if base["p95_ms"] > 0 and bad["answered"] else float("inf"))
+        out.append({"kind": kind, "baseline": base, "abuse": bad, "ratio": ratio,
+                    "met": ratio <= target})
+    return out
+
+
+def abuse_table(rows: list[dict], target: float = ABUSE_TARGET) -> str:
+    """The Markdown table of `--abuse` (per kind: baseline, then beside the abuser)."""
+    head = ("| abusive client | probe p50 ms (alone / beside) | probe p95 ms (alone / beside) "
+            f"| p95 ratio | <= {target:g}x | moves answered (alone / beside) "
+            "| server CPU % (alone / beside) | server log lines (alone / beside) "
+            "| tracebacks beside | what the abuser did |")
+    lines = [head, "|" + " --- |" * 10]
+    for s in abuse_summary(rows, target):
+        b, a = s["baseline"], s["abuse"]
+        did = ", ".join(f"{k} {v}" for k, v in a["abuser"].items()) or "-"
+        lines.append(
+            f"| {s['kind']} | {b['p50_ms']:.0f} / {a['p50_ms']:.0f} "
+            f"| {b['p95_ms']:.0f} / {a['p95_ms']:.0f} | {s['ratio']:.2f} "
+            f"| {'yes' if s['met'] else '**no**'} "
+            f"| {b['answered']}/{b['moves_sent']} / {a['answered']}/{a['moves_sent']} "
+            f"| {b['server_cpu_pct']} / {a['server_cpu_pct']} "
+            f"| {b['log_lines']} / {a['log_lines']} | {a['tracebacks']} | {did} |")
+    return "\n".join(lines)
