@@ -284,7 +284,7 @@ def main(argv: list[str] | None = None) -> None:
     from bokeh.document import Document
 
     import app.methods.data
-    import app.page.explorer  # (what every session's script imports)
+    import app.page.explorer  # (what every session's page is built from)
 
     # one page built and dropped: what a first page would do once (Panel's and Bokeh's
     # lazy imports and caches) is done before a visitor waits for it

@@ -140,24 +140,36 @@ async def abuse_invented_ids(url: str, http: AsyncHTTPClient, stop: asyncio.Even
             s.close()
 
 
-async def abuse_pull_doc(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
-                         counts: dict) -> None:
-    """A loaded session sending PULL-DOC requests, up to `PULL_DOC_RATE` a second,
-    without waiting for the replies (its reader takes them); closed at the end."""
+async def flood(url: str, http: AsyncHTTPClient, stop: asyncio.Event, counts: dict,
+                rate: float, message, reply: str, replies: str) -> None:
+    """A loaded session sending `message(session, n)` (a message type and its content)
+    for n = 0, 1, ..., up to `rate` a second, without waiting for the replies (its
+    reader takes them), until `stop` or the server closes it; counts those sent and,
+    as `replies`, the server's messages of type `reply`."""
     s = Session(url, http, 5.0, None)
     await s.open()
+    n = 0
     try:
-        async for _ in paced(stop, PULL_DOC_RATE):
+        async for _ in paced(stop, rate):
             if not s.alive:
                 counts["connection closed by the server"] = 1
                 break
-            await s._send("PULL-DOC-REQ", {})
-            counts["sent"] = counts.get("sent", 0) + 1
+            await s._send(*message(s, n))
+            n += 1
     except WebSocketClosedError:
         counts["connection closed by the server"] = 1
     finally:
-        counts["replies"] = s.received.get("PULL-DOC-REPLY", 0)
+        counts["sent"] = n
+        counts[replies] = s.received.get(reply, 0)
         s.close()
+
+
+async def abuse_pull_doc(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
+                         counts: dict) -> None:
+    """A loaded session sending PULL-DOC requests, up to `PULL_DOC_RATE` a second,
+    without waiting for the replies; closed at the end."""
+    await flood(url, http, stop, counts, PULL_DOC_RATE, lambda s, n: ("PULL-DOC-REQ", {}),
+                "PULL-DOC-REPLY", "replies")
 
 
 async def abuse_methods_16x(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
@@ -199,23 +211,11 @@ async def abuse_nan(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
                     counts: dict) -> None:
     """A session sending NaN and ±inf as the ψ slider's value, up to `NAN_RATE` a
     second; counts the server's ERROR replies."""
-    s = Session(url, http, 5.0, None)
-    await s.open()
-    try:
-        n = 0
-        async for _ in paced(stop, NAN_RATE):
-            if not s.alive:
-                counts["connection closed by the server"] = 1
-                break
-            await s._send("PATCH-DOC", {"events": [changed(s.slider, "value",
-                                                           NAN_VALUES[n % len(NAN_VALUES)])]})
-            n += 1
-        counts["sent"] = n
-    except WebSocketClosedError:
-        counts["connection closed by the server"] = 1
-    finally:
-        counts["server ERROR replies"] = s.received.get("ERROR", 0)
-        s.close()
+    def value(s: Session, n: int) -> tuple[str, dict]:
+        event = changed(s.slider, "value", NAN_VALUES[n % len(NAN_VALUES)])
+        return "PATCH-DOC", {"events": [event]}
+
+    await flood(url, http, stop, counts, NAN_RATE, value, "ERROR", "server ERROR replies")
 
 
 async def abuse_page_loop_steady(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
