@@ -79,7 +79,7 @@ class Controls:
         for name, label, start, end, step in SLIDERS:
             widget = ExactSlider(label=label, value=getattr(state, name), start=start,
                                  end=end, step=step, parse=partial(parse_value, name),
-                                 name=name)
+                                 name=name, direct=True)
             bind(widget, state.param[name])
             setattr(self, f"{name}_slider", widget)
         self.drive_select = pn.widgets.RadioButtonGroup(
@@ -91,14 +91,15 @@ class Controls:
             sizing_mode="stretch_width", margin=0)
         self.theta_slider = ExactSlider(
             label="θ (°): drive angle, tan θ = u₀/H", value=state.theta, start=0.0, end=89.5,
-            step=0.1, parse=partial(parse_value, "theta"), name="theta")
+            step=0.1, parse=partial(parse_value, "theta"), name="theta", direct=True)
         bind(self.theta_slider, state.param.theta)
         self.drive_note = pn.pane.HTML("", sizing_mode="stretch_width", styles=NOTE_STYLE,
                                        name="drive_note")
         c = state.contact()
         self.tau_slider = ExactSlider(
             label="τ = ωt (rad): time", value=state.tau, start=c.tau0, end=c.tau_end,
-            step=0.002, parse=lambda text: parse_tau(text, view.shown), name="tau")
+            step=0.002, parse=lambda text: parse_tau(text, view.shown), name="tau",
+            direct=True)
         follow(self.tau_slider, state.param.tau)
         self.play_button = PlayButton(width=110)  # (the keyboard stays on it)
         self.play_button.param.watch(

@@ -147,6 +147,10 @@ if (event != null && event.key in pages) {
 }
 """
 
+#: JavaScript of `DirectSlider`: the value set with BokehJS's `setv`, which Panel does not
+#: take for a change of the parameter (it takes what a script assigns, ``data.NAME = ...``).
+_DIRECT_SET = "data.setv({value: parseFloat(input.value)});"
+
 
 class LabelledSlider(WrittenHTML):
     """A slider over [start, end] by `step`, named by `label` for a screen reader.
@@ -197,6 +201,23 @@ class LabelledSlider(WrittenHTML):
         super().__init__(**params)
 
 
+class DirectSlider(LabelledSlider):
+    """A `LabelledSlider` whose moves in the browser reach the server through Bokeh alone.
+
+    Panel takes a change of a `LabelledSlider` from the browser 50 ms after it arrives,
+    through its own machinery (~1 ms of server CPU per move), and sets `value`.  This
+    one's scripts set the value with BokehJS's `setv`, which Panel does not take: its
+    `value` changes only from the server, and the browser's moves are taken by a Bokeh
+    `on_change` of the model's `data` (`ExactSlider.follow_browser`), once each.
+    """
+
+    _scripts: ClassVar[dict[str, str]] = {
+        **LabelledSlider._scripts,
+        "input": _DIRECT_SET,
+        "keydown": _SLIDER_PAGE.replace("data.value = parseFloat(input.value);", _DIRECT_SET),
+    }
+
+
 #: The box of an `ExactSlider` (a Bokeh `TextInput`, which the page's CSS for Panel's
 #: components, `app.page.layout.CSS`, does not reach) drawn as those: the page's type
 #: size, the keyboard's ring, a disabled box greyed.
@@ -210,6 +231,8 @@ class ExactSlider(pn.viewable.Viewer):
 
     `parse(text)` returns the value a typed text stands for, or raises ValueError with
     the message to show.  `value` is the one to watch or set; `disabled` greys out both.
+    `direct`: the slider is a `DirectSlider`, whose browser moves only `follow_browser`
+    takes (it must be called with the served document; `name` is then required).
     """
 
     value = param.Number(default=0.0)
@@ -220,9 +243,11 @@ class ExactSlider(pn.viewable.Viewer):
 
     def __init__(self, *, label: str, value: float, start: float, end: float, step: float,
                  parse: Callable[[str], float], digits: int = 6,
-                 name: str | None = None) -> None:
+                 name: str | None = None, direct: bool = False) -> None:
         if not start < end:
             raise ValueError(f"{label}: start {start} must be below end {end}")
+        if direct and not name:
+            raise ValueError(f"{label}: a direct slider needs a name (`follow_browser`)")
         super().__init__(value=value, start=min(start, value), end=max(end, value))
         self._range = (start, end)  # the slider's own (teaching) range
         self._parse = parse
@@ -230,7 +255,7 @@ class ExactSlider(pn.viewable.Viewer):
         self._doc: Document | None = None  # the served document (`follow_browser`)
         self._due = value  # the browser's last move, for `_apply_due`
         self._scheduled = False
-        self._slider = LabelledSlider(
+        self._slider = (DirectSlider if direct else LabelledSlider)(
             label=label, value=value, start=self.start, end=self.end, step=step,
             sizing_mode="stretch_width", margin=(0, 8, 5, 8),
             css_classes=[f"slider-{name}"] if name else [],
@@ -276,12 +301,16 @@ class ExactSlider(pn.viewable.Viewer):
         (its model's `data`, see `LabelledSlider`) runs when the change arrives; the move
         is then applied by `_apply_due` on the event loop (inside `unlocked`, so that all
         it changes goes out as one message; the moves that arrive before it runs are
-        merged into the last).  Panel's delayed application finds the value already set
-        and changes nothing.  The model is found by its tag (`{name}-slider`); a slider
-        without a name is left to Panel.
+        merged into the last).  A `direct` slider's moves Panel does not take at all
+        (`DirectSlider`); another's, Panel's delayed application finds already set and
+        changes nothing.  The model is found by its tag (`{name}-slider`); a slider
+        without a name is left to Panel.  LookupError: a direct slider's model is not in
+        `doc` (its moves would be lost).
         """
         tags = self._slider.tags
         model = doc.select_one({"tags": tags[0]}) if tags else None
+        if model is None and isinstance(self._slider, DirectSlider):
+            raise LookupError(f"slider {tags[0]!r} is not in the served document")
         if model is not None:
             self._doc = doc
             model.data.on_change("value", self._on_browser_value)
