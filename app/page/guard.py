@@ -26,6 +26,7 @@ from panel.io.location import Location
 
 from app.page.explorer import Explorer
 from app.page.memory import SessionMemory
+from app.page.pulls import PullGuard
 
 log = logging.getLogger(__name__)
 
@@ -155,7 +156,9 @@ def serve_page() -> None:
     its build waited for a worker nothing (its session is discarded unused).  A built
     session's objects are kept out of the garbage collector's walks while it is open
     (`MEMORY`)."""
-    request = pn.state.curdoc.session_context.request
+    doc = pn.state.curdoc
+    doc.add_root(PullGuard())  # (first: serialized before the rest, see app.page.pulls)
+    request = doc.session_context.request
     client = str(request.remote_ip)
     if gone(request):
         log.debug("page not built for %s: the client has gone", client)

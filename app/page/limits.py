@@ -1,5 +1,6 @@
 """One log line per burst, not a traceback per message: a websocket closed with messages
-still queued, and websockets naming a session id this server did not sign.
+still queued, websockets naming a session id this server did not sign, and whole-document
+pulls past their session's limit (`app.page.pulls`).
 
 A client that sends many messages without waiting for the answers (e.g. PULL-DOC
 requests in a loop) and then closes leaves them in the server's read buffer.  Tornado
@@ -69,6 +70,14 @@ def refused_token(record: logging.LogRecord) -> bool:
     return raised_in(record, ProtocolError, "open", "bokeh/server/views/ws.py")
 
 
+def refused_pull(record: logging.LogRecord) -> bool:
+    """Whether `record` carries the refusal of a whole-document pull past its session's
+    limit (`app.page.pulls.PullRefused`, logged by Bokeh as an error handling it)."""
+    from app.page.pulls import PullRefused
+
+    return raised_in(record, PullRefused, "to_serializable", "app/page/pulls.py")
+
+
 def bad_signature(record: logging.LogRecord) -> bool:
     """Whether `record` is Bokeh's error for a token with an invalid signature."""
     return record.msg == BAD_SIGNATURE
@@ -117,6 +126,8 @@ def quiet_closed_connections(window: float = 10.0) -> list[tuple[str, Burst]]:
         (PROTOCOL_LOGGER, Burst(detached_session, "messages that arrived on a websocket "
                                 "after it closed were dropped (Bokeh's AssertionError)",
                                 window)),
+        (PROTOCOL_LOGGER, Burst(refused_pull, "whole-document pulls past their session's "
+                                "limit were refused", window)),
         (WS_LOGGER, Burst(closed_send, "replies to a closed websocket were dropped",
                           window)),
         (TORNADO_LOGGER, Burst(detached_session, "a websocket closed with messages "

@@ -274,3 +274,24 @@ def test_a_page_whose_client_has_gone_is_not_built(served, monkeypatch) -> None:
     with urllib.request.urlopen(url, timeout=60) as r:
         assert r.status == 200
     assert len(built) == 1
+
+
+def test_a_sessions_pulls_have_their_burst_then_their_rate() -> None:
+    from bokeh.document import Document
+
+    from app.page.pulls import PullGuard, PullRefused
+
+    clock = Clock()
+    doc = Document()
+    doc.add_root(PullGuard(burst=2, rate=0.5, clock=clock))
+    doc.to_json()
+    doc.to_json()
+    with pytest.raises(PullRefused):
+        doc.to_json()
+    clock.now = 1.9
+    with pytest.raises(PullRefused):
+        doc.to_json()
+    clock.now = 2.1  # one pull back
+    doc.to_json()
+    with pytest.raises(PullRefused):
+        doc.to_json()

@@ -8,6 +8,7 @@ from __future__ import annotations
 import asyncio
 import gc
 import json
+import logging
 import sys
 import threading
 import time
@@ -263,3 +264,49 @@ def test_a_session_id_the_server_did_not_issue_is_refused(served, signed_with) -
     with pytest.raises(Exception):  # noqa: B017 (closed or refused, as the client sees it)
         asyncio.run(pull())
     assert len(server.get_sessions("/main")) == before
+
+
+def test_whole_document_pulls_past_a_sessions_burst_are_refused(served, caplog) -> None:
+    """A script's PULL-DOC requests (each answered with the whole document, ~100 ms of
+    CPU to serialize) are answered up to the session's burst, the page's own pull
+    included (`app.page.pulls`), and refused past it with Bokeh's error reply; the log
+    gets one line for the burst, not a traceback per refusal."""
+    from app.page.limits import PROTOCOL_LOGGER, quiet_closed_connections
+    from app.page.pulls import BURST
+
+    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
+    from load_test import Session
+
+    sent = 10
+
+    async def spam() -> list[tuple[str, str]]:
+        session = Session(served[0], AsyncHTTPClient(), 10.0, None)
+        await session.open()  # (the page's own pull)
+        session._reader.cancel()  # read the replies here instead
+        try:
+            for _ in range(sent):
+                await session._send("PULL-DOC-REQ", {})
+            replies = []
+            while len(replies) < sent:
+                header, content = await asyncio.wait_for(session._read(), 30)
+                if header["msgtype"] in ("PULL-DOC-REPLY", "ERROR"):
+                    replies.append((header["msgtype"], content))
+            return replies
+        finally:
+            session.close()
+
+    filters = quiet_closed_connections()
+    try:
+        with caplog.at_level(logging.ERROR, logger=PROTOCOL_LOGGER):
+            replies = asyncio.run(spam())
+    finally:
+        for name, f in filters:
+            logging.getLogger(name).removeFilter(f)
+    kinds = [k for k, _ in replies]
+    answered = int(BURST) - 1
+    assert kinds == ["PULL-DOC-REPLY"] * answered + ["ERROR"] * (sent - answered)
+    assert all(len(c) > 100_000 for k, c in replies if k == "PULL-DOC-REPLY")
+    assert all("PullRefused" in json.loads(c)["text"] for k, c in replies if k == "ERROR")
+    lines = [r for r in caplog.records if r.name == PROTOCOL_LOGGER]
+    assert len(lines) == 1 and lines[0].exc_info is None, [r.getMessage() for r in lines]
+    assert "pulls past their session's limit" in lines[0].getMessage()
