@@ -145,7 +145,7 @@ async def flood(url: str, http: AsyncHTTPClient, stop: asyncio.Event, counts: di
     """A loaded session sending `message(session, n)` (a message type and its content)
     for n = 0, 1, ..., up to `rate` a second, without waiting for the replies (its
     reader takes them), until `stop` or the server closes it; counts those sent and,
-    as `replies`, the server's messages of type `reply`."""
+    as `replies`, the server's messages of type `reply` (and its ERROR replies)."""
     s = Session(url, http, 5.0, None)
     await s.open()
     n = 0
@@ -161,13 +161,16 @@ async def flood(url: str, http: AsyncHTTPClient, stop: asyncio.Event, counts: di
     finally:
         counts["sent"] = n
         counts[replies] = s.received.get(reply, 0)
+        if reply != "ERROR":
+            counts["refused (ERROR replies)"] = s.received.get("ERROR", 0)
         s.close()
 
 
 async def abuse_pull_doc(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
                          counts: dict) -> None:
     """A loaded session sending PULL-DOC requests, up to `PULL_DOC_RATE` a second,
-    without waiting for the replies; closed at the end."""
+    without waiting for the replies (past its session's few, the server refuses them:
+    `app.page.pulls`); closed at the end."""
     await flood(url, http, stop, counts, PULL_DOC_RATE, lambda s, n: ("PULL-DOC-REQ", {}),
                 "PULL-DOC-REPLY", "replies")
 
