@@ -22,6 +22,7 @@ from bokeh.models import (
     Text,
 )
 
+from app.contact.spheres import show
 from app.kit.figures import (
     CURVE_POINTS,
     DATA_LEVEL,
@@ -35,7 +36,6 @@ from app.kit.figures import (
     stamp,
     style_figure,
 )
-from app.kit.wire import inline
 from core import Contact
 
 #: The landmark labels' offset below the frame's top (px), and tau1's, a line lower: it
@@ -157,7 +157,7 @@ class CurveScene(Scene):
     def update_contact(self, c: Contact) -> None:
         tau = self.grid(c)
         columns = self.columns(c, tau)
-        self.source.data = inline({"tau": tau, **columns})
+        show(self.source, {"tau": tau, **columns})
         fit_range(self.figures[0].x_range, tau, pad=0.02)
         marks = [(c.tau0, "τ₀"), (math.pi / 2, "π/2"), (c.tau1, "τ₁"), (c.tau_end, "π−τ₀")]
         marks = [(x, label) for x, label in marks if not math.isnan(x)]
@@ -169,21 +169,21 @@ class CurveScene(Scene):
             # the first and last labels inside the frame (at its edges, centred, they
             # would be cut)
             align = ["left", *["center"] * (len(marks) - 2), "right"]
-            landmarks.data = {"x": [x for x, _ in marks], "label": [lb for _, lb in marks],
-                              "align": align,
-                              "dy": [TAU1_DY if lb == "τ₁" else LANDMARK_DY for _, lb in marks],
-                              "lo": [y.start] * len(marks), "hi": [y.end] * len(marks)}
+            show(landmarks, {"x": [x for x, _ in marks], "label": [lb for _, lb in marks],
+                             "align": align,
+                             "dy": [TAU1_DY if lb == "τ₁" else LANDMARK_DY for _, lb in marks],
+                             "lo": [y.start] * len(marks), "hi": [y.end] * len(marks)})
 
     def update_tau(self, c: Contact, tau: float) -> None:
         values = self.columns(c, np.array([tau]))
         ranges = [self._y_range(col) for col, *_ in self.curves]
-        self.marker.data = {
+        show(self.marker, {
             "x": [tau] * len(self.curves),
             "y": [float(values[col][0]) for col, *_ in self.curves],
             "color": [color for _, _, color, _ in self.curves],
             "lo": [y.start for y in ranges],
             "hi": [y.end for y in ranges],
-        }
+        })
 
 
 class ForceScene(CurveScene):
@@ -265,6 +265,7 @@ class RadiiScene(CurveScene):
                                         name="radii_bracket")
         #: Fig. 4b's disks: the Fig. 6 times that lie in the contact
         self.disks = ColumnDataSource({"tau": [], "a": [], "label": []}, name="radii_disks")
+        self._tau0 = ""  # (float.hex) the tau0 of Fig. 4a and the disks shown
 
     @cached_property
     def drive_figure(self):
@@ -307,7 +308,12 @@ class RadiiScene(CurveScene):
         return column(self.drive_figure, main, sizing_mode="stretch_width")
 
     def update_contact(self, c: Contact) -> None:
+        """The curves, and Fig. 4a with the Fig. 6 disks (tau0 alone: drawn again only
+        when tau0 changes)."""
         super().update_contact(c)
+        if c.tau0.hex() == self._tau0:  # (bit for bit: -0.0 is not 0.0)
+            return
+        self._tau0 = c.tau0.hex()
         tau = np.unique(np.concatenate([np.linspace(0.0, math.pi, 241), [c.tau0, c.tau_end]]))
         uz = c.drive_displacement(tau)  # u_z0 / H = u_x0 / u0 = sin tau (eq 3)
         s0 = math.sin(c.tau0)

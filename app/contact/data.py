@@ -42,7 +42,8 @@ def readout_rows(c: Contact) -> list[tuple[str, str]]:
 def captions(c: Contact, taus: np.ndarray) -> list[str]:
     """The caption of the traction plot at each of the times `taus` (rad): tau, T/T0,
     a/a*, b/a* (and t, T, a, b in SI units for a contact built from SI inputs)."""
-    T, a, b = (f(taus) for f in (c.tangential_force, c.contact_radius, c.stick_radius))
+    line = c.at(taus)  # (one validation of taus for the three)
+    T, a, b = line.tangential_force, line.contact_radius, line.stick_radius
     texts = [f"τ = {t:.4f} rad  T/T₀ = {x:+.4f}\na/a* = {y:.4f}  b/a* = {z:.4f}"
              for t, x, y, z in zip(taus, T, a, b, strict=True)]
     sc = c.scales

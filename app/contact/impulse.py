@@ -11,6 +11,7 @@ from bokeh.models import (
     Range1d,
 )
 
+from app.contact.spheres import show
 from app.kit.figures import (
     CURVE_POINTS,
     DATA_LEVEL,
@@ -95,7 +96,7 @@ class ImpulseScene(Scene):
         return np.unique(np.concatenate([grid, [1.0]]))
 
     def update_contact(self, c: Contact) -> None:
-        self.marker.data = {"psi": [c.psi], "ratio": [c.impulse_ratio]}
+        show(self.marker, {"psi": [c.psi], "ratio": [c.impulse_ratio]})
         psi = self.psi_grid(c.psi)
         key = (c.tau0, self.log, psi[0], psi[-1])
         if key == self._shown:

@@ -26,6 +26,12 @@ stay on the contact.
 Every number comes from `core` through `drawing(c, taus)`, which gives each source's
 columns at K times as arrays of shape (K, n): `update_tau` shows one time, the browser's
 player (`app.contact.player`) copies the frames of a whole contact.
+
+What a scene sends on a move, here and in the other scenes of the contact: `show` gives a
+source data only when a column differs from what it holds (Bokeh sends every data set,
+equal or not), `put` sets only the properties that differ, and what depends on tau0
+alone (here the period strip, the pictograms and the sphere at rest) is drawn again only
+when tau0 changes: a psi move computes and sends only what it changes.
 """
 
 from __future__ import annotations
@@ -33,6 +39,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from bokeh.core.property.validation import validate
 from bokeh.models import (
     ColumnDataSource,
     Label,
@@ -70,6 +77,9 @@ OUTLINE_POINTS = 97  # points of each sphere's outline
 HEAD_SIZE = 13  # arrow heads, screen pixels
 
 _ANGLES = np.linspace(0.0, 2.0 * math.pi, OUTLINE_POINTS)
+#: the unit circle's outline and the held upper sphere's (centre (0, 1)), radii
+_COS, _SIN = np.cos(_ANGLES), np.sin(_ANGLES)
+_UPPER_Y = 1.0 + _SIN
 
 #: The period strip: tau from PERIOD[0] to PERIOD[1] drawn across x in [-1.5, 1.5]
 #: sphere radii, sin tau as STRIP_HEIGHT radii about y = STRIP_Y.
@@ -114,6 +124,12 @@ def scale_note(c: Contact) -> str:
     return note
 
 
+def _rows(*columns: np.ndarray) -> np.ndarray:
+    """The K-vectors `columns` side by side: shape (K, len(columns)) (`np.stack(...,
+    axis=1)` without its checks; a view of a (len(columns), K) array)."""
+    return np.array(columns).T
+
+
 def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
     """What the scene draws at each of the K times `taus`, in sphere radii: per source
     name, its columns as arrays of shape (K, n) (n rows per time)."""
@@ -130,10 +146,9 @@ def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
     overlap = np.where(touching, np.maximum(H * (sin_t - s0), 0.0), 0.0)
     # the plane midway between the undeformed surfaces: both are flattened to it
     mid = overlap / 2
-    cos_a, sin_a = np.cos(_ANGLES), np.sin(_ANGLES)
     shape = (taus.size, _ANGLES.size)
-    upper_y = np.broadcast_to(1.0 + sin_a, shape)
-    lower_y = cy[:, None] + sin_a
+    upper_y = np.broadcast_to(_UPPER_Y, shape)
+    lower_y = cy[:, None] + _SIN
     upper_y = np.where(touching[:, None], np.maximum(upper_y, mid[:, None]), upper_y)
     lower_y = np.where(touching[:, None], np.minimum(lower_y, mid[:, None]), lower_y)
     # the patch: core's a / a* and b / a*, a* drawn as sqrt((H - h) / 2) radii (eq 7)
@@ -145,42 +160,41 @@ def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
     ring = np.array([look.ring_color for look in looks], dtype=object)
     stick = np.full(taus.size, STICK_COLOR, dtype=object)
     patch = {
-        "x0": np.stack([xc - a, xc - b, xc + b], axis=1),
-        "x1": np.stack([xc - b, xc + b, xc + a], axis=1),
-        "y": np.stack([y, y, y], axis=1),
-        "color": np.stack([ring, stick, ring], axis=1),
+        "x0": _rows(xc - a, xc - b, xc + b),
+        "x1": _rows(xc - b, xc + b, xc + a),
+        "y": _rows(y, y, y),
+        "color": _rows(ring, stick, ring),
     }
     P, T = line.normal_force, line.tangential_force
     # one length scale for both (T / T0 and mu P / T0 = P / P0 are in the same units):
     # the contact's largest P, (1 - sin tau0)^(3/2) P0 at pi/2 (eq 9), is ARROW long
     unit = ARROW / gap**1.5
-    shown = np.stack([P, np.abs(T)], axis=1) * unit > 0.01  # a force drawn with its head
+    shown = _rows(P, np.abs(T)) * unit > 0.01  # a force drawn with its head
     labels = np.array([[f"P = {p:.3g} P₀", f"T = {t:+.3g} T₀"] for p, t in zip(P, T,
                                                                               strict=True)],
                       dtype=object).reshape(taus.size, 2)
-    tip_x, tip_y = np.stack([xc, xc + unit * T], axis=1), np.stack([y + unit * P, y], axis=1)
+    tip_x, tip_y = _rows(xc, xc + unit * T), _rows(y + unit * P, y)
     forces = {
-        "x0": np.stack([xc, xc], axis=1), "y0": np.stack([y, y], axis=1),
+        "x0": _rows(xc, xc), "y0": _rows(y, y),
         "x1": tip_x, "y1": tip_y,
         # labels: P's beside its tip, T's centred below its arrow
-        "lx": np.stack([xc + 0.08, xc + unit * T / 2], axis=1),
+        "lx": _rows(xc + 0.08, xc + unit * T / 2),
         "ly": tip_y - np.array([0.0, 0.14]),
         "align": np.array([["left", "center"]] * taus.size, dtype=object),
         "head": np.where(shown, HEAD_SIZE, 0),
         # the triangle marker points up; turned to point along T
-        "angle": np.stack([np.zeros_like(T), np.where(T < 0, math.pi / 2, -math.pi / 2)],
-                          axis=1),
+        "angle": _rows(np.zeros_like(T), np.where(T < 0, math.pi / 2, -math.pi / 2)),
         "label": np.where(shown, labels, ""),
         # the time and the contact, what every plot's stamp shows (`follow_clock`: this
         # source changes with each of them, on a slider move as on a played frame)
-        "tau": np.stack([taus, taus], axis=1),
+        "tau": _rows(taus, taus),
         "psi": np.full((taus.size, 2), c.psi), "tau0": np.full((taus.size, 2), c.tau0),
     }
     badge = {"text": np.array([[look.name] for look in looks], dtype=object),
              "color": np.array([[look.color] for look in looks], dtype=object)}
     return {
-        "spheres_upper": {"x": np.broadcast_to(cos_a, shape), "y": upper_y},
-        "spheres_lower": {"x": cx[:, None] + cos_a[None, :], "y": lower_y},
+        "spheres_upper": {"x": np.broadcast_to(_COS, shape), "y": upper_y},
+        "spheres_lower": {"x": cx[:, None] + _COS, "y": lower_y},
         "spheres_patch": patch,
         "spheres_forces": forces,
         "spheres_badge": badge,
@@ -269,6 +283,7 @@ class SpheresScene(Scene):
                              name="spheres_rest_note", **ground)
         fig.add_layout(self.note)
         fig.add_layout(self.h_label)
+        self._tau0 = ""  # (float.hex) the tau0 of the period strip and pictograms shown
         # every plot's stamp follows the forces' time; this one top right, beside the
         # upper sphere
         follow_clock(s["spheres_forces"])
@@ -278,23 +293,31 @@ class SpheresScene(Scene):
         self.figure = fig
 
     def update_contact(self, c: Contact) -> None:
-        """The drive line, the lower sphere at rest (tau = 0) and the scale note."""
+        """The drive line and the scale note (they follow theta, so psi); the lower
+        sphere at rest (tau = 0), the period strip and the pictograms (tau0 alone: drawn
+        again only when tau0 changes)."""
         H, u0 = drawn_amplitudes(c)
-        rest_top = -H * math.sin(c.tau0)  # the gap h below the upper sphere
-        cy = rest_top - 1.0
-        show(self.rest, inline({"x": np.cos(_ANGLES), "y": cy + np.sin(_ANGLES)}))
+        cy = -H * math.sin(c.tau0) - 1.0  # the rest centre: the gap h below the upper sphere
         reach = 1.6  # the drive line, beyond both ends of the stroke
         show(self.still, {"x0": [-reach * u0], "y0": [cy - reach * H],
                           "x1": [reach * u0], "y1": [cy + reach * H]})
         gap = "dashed: at rest, h > 0 (a gap)" if c.tau0 > 0 else \
             "dashed: at rest, h ≤ 0 (a preload)"
-        self.h_label.text = f"{gap}\ndrive line at θ = {math.degrees(c.theta):.1f}°"
-        self.note.text = scale_note(c)
+        put(self.h_label, text=f"{gap}\ndrive line at θ = {math.degrees(c.theta):.1f}°")
+        put(self.note, text=scale_note(c))
+        if c.tau0.hex() != self._tau0:  # (bit for bit: -0.0 is not 0.0)
+            self._tau0 = c.tau0.hex()
+            self._show_period(c, cy)
+
+    def _show_period(self, c: Contact, cy: float) -> None:
+        """The lower sphere at rest (centre (0, cy)), the period strip and the
+        pictograms of contact `c` (they depend on its tau0 only)."""
+        show(self.rest, {"x": _COS, "y": cy + _SIN})
         taus = np.unique(np.concatenate([np.linspace(*PERIOD, 241), [c.tau0, c.tau_end]]))
-        show(self.period, inline({"x": strip_x(taus), "y": strip_y(taus)}))
+        show(self.period, {"x": strip_x(taus), "y": strip_y(taus)})
         inside = taus[(taus >= c.tau0) & (taus <= c.tau_end)]
-        show(self.period_contact, inline({"x": strip_x(inside), "lo": strip_y(inside),
-                                          "hi": np.full(inside.size, STRIP_Y + STRIP_HEIGHT)}))
+        show(self.period_contact, {"x": strip_x(inside), "lo": strip_y(inside),
+                                   "hi": np.full(inside.size, STRIP_Y + STRIP_HEIGHT)})
         words = {"apart": (PERIOD[0] + c.tau0) / 2, "contact": math.pi / 2,
                  "apart ": (c.tau_end + PERIOD[1]) / 2}
         show(self.period_words, {"x": list(strip_x(np.array(list(words.values())))),
@@ -311,11 +334,44 @@ class SpheresScene(Scene):
 
     def update_tau(self, c: Contact, tau: float) -> None:
         for name, cols in drawing(c, np.array([tau])).items():
-            show(self.sources[name], inline({k: column(v[0]) for k, v in cols.items()}))
+            show(self.sources[name], {k: column(v[0]) for k, v in cols.items()})
 
 
 def show(source: ColumnDataSource, data: dict) -> None:
-    """Give `source` this data, unless it holds it already (nothing is sent then)."""
-    if data.keys() != source.data.keys() or not all(
-            np.array_equal(np.asarray(source.data[k]), np.asarray(v)) for k, v in data.items()):
-        source.data = data
+    """Give `source` this data (`send`), unless it holds it already (nothing is sent
+    then): every column equal in value, as `np.array_equal` has it."""
+    held = source.data
+    if data.keys() != held.keys() or not all(_same(held[k], v) for k, v in data.items()):
+        send(source, data)
+
+
+def send(source: ColumnDataSource, data: dict) -> None:
+    """Give `source` this data, its numeric arrays sent inline (`app.kit.wire.inline`).
+
+    Without Bokeh's validation of every column and value (two thirds of the cost of a
+    set, for data the scenes build valid: a dict of equal-length columns of numbers or
+    text); the value held and sent is the same (Bokeh's `validate(False)` skips the
+    check only)."""
+    with validate(False):
+        source.data = inline(data)
+
+
+def _same(held, new) -> bool:
+    """Whether column `new` equals column `held` in value (`np.array_equal`), for two
+    numeric arrays or two lists of text without its conversions."""
+    if isinstance(held, np.ndarray) and isinstance(new, np.ndarray) \
+            and held.dtype.kind in "fiu" and new.dtype.kind in "fiu":
+        return held.shape == new.shape and bool((held == new).all())
+    if isinstance(held, list) and isinstance(new, list) \
+            and all(isinstance(x, str) for x in new):
+        return held == new
+    return np.array_equal(np.asarray(held), np.asarray(new))
+
+
+def put(model, **values) -> None:
+    """Set the properties `values` of a Bokeh `model` that differ from those it holds
+    (Bokeh sends no equal value either, but validates it first: a set costs more than
+    a look)."""
+    for name, value in values.items():
+        if getattr(model, name) != value:
+            setattr(model, name, value)

@@ -16,6 +16,7 @@ from bokeh.models import (
 )
 
 from app.contact.phases import STICK_COLOR, style
+from app.contact.spheres import put, show
 from app.kit.figures import (
     DATA_LEVEL,
     FRAME_LEVEL,
@@ -27,7 +28,6 @@ from app.kit.figures import (
     stamp,
     style_figure,
 )
-from app.kit.wire import inline
 from core import Contact
 
 
@@ -71,17 +71,25 @@ class TractionScene(Scene):
         self.stamp = stamp(fig, x_units="data", y_units="data", text_baseline="top")
         style_figure(fig)
         self.figure = fig
+        self._tau0 = ""  # (float.hex) the tau0 of the r grid
 
     def update_contact(self, c: Contact) -> None:
-        a_max = float(c.contact_radius(math.pi / 2))
-        p_max = float(c.pressure(0.0, math.pi / 2))
-        self.r_grid = np.linspace(-1.05 * a_max, 1.05 * a_max, PROFILE_POINTS)
-        self.figure.x_range.start, self.figure.x_range.end = -1.1 * a_max, 1.1 * a_max
+        """The r grid and the plot's ranges and labels, after the largest contact radius
+        a/a* and pressure p/p* (at pi/2: eqs 6, 7, which depend on tau0 alone)."""
+        if c.tau0.hex() != self._tau0:  # (bit for bit: -0.0 is not 0.0)
+            self._tau0 = c.tau0.hex()
+            self._a_max = float(c.contact_radius(math.pi / 2))
+            self._p_max = float(c.pressure(0.0, math.pi / 2))
+            self.r_grid = np.linspace(-1.05 * self._a_max, 1.05 * self._a_max,
+                                      PROFILE_POINTS)
+        a_max, p_max = self._a_max, self._p_max
+        fig = self.figure
+        put(fig.x_range, start=-1.1 * a_max, end=1.1 * a_max)
         # room above the largest pressure for the caption's two lines, below it for the phase
-        self.figure.y_range.start, self.figure.y_range.end = -1.6 * p_max, 2.4 * p_max
-        self.caption.x, self.caption.y = 1.08 * a_max, 2.35 * p_max
-        self.stamp.x, self.stamp.y = -1.08 * a_max, 2.35 * p_max
-        self.phase_label.x, self.phase_label.y = 0.0, -1.55 * p_max  # bottom centre
+        put(fig.y_range, start=-1.6 * p_max, end=2.4 * p_max)
+        put(self.caption, x=1.08 * a_max, y=2.35 * p_max)
+        put(self.stamp, x=-1.08 * a_max, y=2.35 * p_max)
+        put(self.phase_label, x=0.0, y=-1.55 * p_max)  # bottom centre
 
     def profiles(self, c: Contact, taus: np.ndarray) -> dict[str, np.ndarray]:
         """The profile at each of the K times `taus`: columns of shape (K, L).
@@ -113,10 +121,9 @@ class TractionScene(Scene):
                 "stick": ((np.abs(r) <= b) & (b > 0)).astype(float)}
 
     def update_tau(self, c: Contact, tau: float) -> None:
-        self.source.data = inline({k: v[0] for k, v in self.profiles(c, np.array([tau])).items()})
+        show(self.source, {k: v[0] for k, v in self.profiles(c, np.array([tau])).items()})
         look = style(c.phase(tau))
-        self.phase_label.text_color = look.color
-        self.phase_label.text = look.name
+        put(self.phase_label, text_color=look.color, text=look.name)
 
 
 class DiscScene(Scene):
@@ -143,15 +150,17 @@ class DiscScene(Scene):
         self.figure = fig
 
     def update_contact(self, c: Contact) -> None:
+        """The envelope (the largest contact, a/a* at pi/2, eq 7) and the ranges around
+        it."""
         a_max = float(c.contact_radius(math.pi / 2))
-        self.envelope.glyph.radius = a_max
-        self.figure.x_range.start, self.figure.x_range.end = -1.15 * a_max, 1.15 * a_max
-        self.figure.y_range.start, self.figure.y_range.end = -1.15 * a_max, 1.15 * a_max
+        put(self.envelope.glyph, radius=a_max)
+        put(self.figure.x_range, start=-1.15 * a_max, end=1.15 * a_max)
+        put(self.figure.y_range, start=-1.15 * a_max, end=1.15 * a_max)
 
     def update_tau(self, c: Contact, tau: float) -> None:
         line = c.at(tau)
         a, b, look = float(line.contact_radius), float(line.stick_radius), style(line.phase)
-        self.source.data = {
+        show(self.source, {
             "x": [0.0, 0.0], "y": [0.0, 0.0], "inner": [0.0, b], "outer": [b, a],
             "color": [STICK_COLOR, look.ring_color], "label": ["stick", look.ring],
-        }
+        })

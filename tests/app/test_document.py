@@ -243,6 +243,27 @@ def test_a_psi_move_sets_only_what_changes(ex: Explorer, psi: float) -> None:
     assert unchanged == []
 
 
+@pytest.mark.parametrize("tab", [0, 2, 3])  # T(tau), the radii with Fig. 4a, the motion
+def test_a_psi_move_below_1_sends_nothing_held_already(ex: Explorer, tab: int) -> None:
+    """Below psi = 1 (no tau1) a psi move moves neither tau0 nor a landmark: what depends
+    on them alone (the landmarks, Fig. 4a, the period strip and the pictograms, the
+    traction plot's ranges) is not sent again, nor anything else a source holds."""
+    doc = Document()
+    ex.view().server_doc(doc)
+    ex.contact.tabs.active = tab
+    ex.contact.controls.psi_slider.value = 0.8  # (leaves the preset)
+    before = _values(doc)
+    events = []
+    doc.on_change(events.append)
+    ex.contact.controls.psi_slider._slider.value = 0.81  # as a move in the browser arrives
+    assert events
+    unchanged = [(type(e.model).__name__, e.model.name, getattr(e, "attr", "data"))
+                 for e in events
+                 if _same(before.get((e.model.id, getattr(e, "attr", "data"))),
+                          getattr(e.model, getattr(e, "attr", "data")))]
+    assert unchanged == []
+
+
 def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> None:
     """What a slider move sends decides the browser's work: new data for the plots that
     show psi, the caption drawn on the traction canvas and the derived-quantities table's
