@@ -20,11 +20,13 @@ import app.kit.widgets
 import app.page.explorer
 from app.contact import data, spheres
 from app.contact.animation import CONTACT_SECONDS
+from app.contact.curves import RadiiScene
 from app.contact.formulas import formulas
 from app.contact.notes import NOTES
 from app.contact.phases import STYLES
 from app.contact.player import frame_index, frame_taus
 from app.contact.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
+from app.contact.traction import TractionScene
 from app.kit.figures import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
 from app.page.explorer import Explorer
 from core import PHASE_NAMES, Contact, Phase, impulse_ratio
@@ -262,6 +264,34 @@ def test_a_psi_move_below_1_sends_nothing_held_already(ex: Explorer, tab: int) -
                  if _same(before.get((e.model.id, getattr(e, "attr", "data"))),
                           getattr(e.model, getattr(e, "attr", "data")))]
     assert unchanged == []
+
+
+def test_what_depends_on_tau0_alone_follows_tau0(ex: Explorer) -> None:
+    """The scenes draw what depends on tau0 alone (the spheres' period strip, pictograms
+    and sphere at rest, the traction plot's r grid, Fig. 4a and its disks) again only
+    when tau0 changes: after any series of moves they hold what new scenes draw for the
+    contact shown."""
+    ex.contact.tabs.active = ex.contact.tabbed.index(ex.contact.radii)
+    for psi, tau0 in [(0.8, 0.5), (3.0, 0.5), (3.0, -0.3), (0.5, -0.3), (0.5, 0.0),
+                      (2.0, 0.0), (2.0, 1.2), (0.9, 1.2)]:
+        ex.state.param.update(psi=psi, tau0=tau0)
+        c = ex.contact.shown
+        assert (c.psi, c.tau0) == (psi, tau0)
+        new = {"spheres": spheres.SpheresScene(), "traction": TractionScene(),
+               "radii": RadiiScene()}
+        for scene in new.values():
+            scene.update_contact(c)
+        shown = ex.contact
+        for name in ("rest", "still", "period", "period_contact", "period_words",
+                     "pictograms"):
+            held, drawn = getattr(shown.spheres, name).data, getattr(new["spheres"], name).data
+            assert _same(dict(held), dict(drawn)), name
+        for name in ("drive", "levels", "bracket", "disks"):
+            held, drawn = getattr(shown.radii, name).data, getattr(new["radii"], name).data
+            assert _same(dict(held), dict(drawn)), name
+        assert shown.traction.r_grid.tobytes() == new["traction"].r_grid.tobytes()
+        assert (shown.traction.figure.x_range.start, shown.traction.figure.y_range.end) == (
+            new["traction"].figure.x_range.start, new["traction"].figure.y_range.end)
 
 
 def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> None:
