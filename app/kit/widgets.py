@@ -304,13 +304,11 @@ class ExactSlider(pn.viewable.Viewer):
         merged into the last).  A `direct` slider's moves Panel does not take at all
         (`DirectSlider`); another's, Panel's delayed application finds already set and
         changes nothing.  The model is found by its tag (`{name}-slider`); a slider
-        without a name is left to Panel.  LookupError: a direct slider's model is not in
-        `doc` (its moves would be lost).
+        without a name is left to Panel, one not on the page (e.g. the presentation
+        view's) has no moves to take.
         """
         tags = self._slider.tags
         model = doc.select_one({"tags": tags[0]}) if tags else None
-        if model is None and isinstance(self._slider, DirectSlider):
-            raise LookupError(f"slider {tags[0]!r} is not in the served document")
         if model is not None:
             self._doc = doc
             model.data.on_change("value", self._on_browser_value)

@@ -141,6 +141,15 @@ def refusal_page(seconds: float) -> pn.Column:
         f"your network just now. Please reload this page in {math.ceil(seconds)} s.</p>"))
 
 
+def failure_page() -> pn.Column:
+    """The page a client gets when its page could not be served at all: what happened
+    (the server logged why; the visitor sees no traceback)."""
+    return pn.Column(pn.pane.HTML(
+        "<h1>Zharii contact explorer</h1><p role='alert'>This page could not be shown. "
+        "Please reload it; if it fails again, open the explorer's address without "
+        "anything after <code>?</code>.</p>"))
+
+
 def gone(request: Any) -> bool:
     """Whether the client of `request` (Bokeh's session request) has hung up: the HTTP
     connection of its page load is closed.  A websocket's request, whose connection the
@@ -153,7 +162,9 @@ def serve_page() -> None:
     """Build the page of the session being created (the server's application)
     from its URL, guarded as `build_page` says, and mark it servable; a client past its
     page builds (`BUILDS`) gets `refusal_page` instead, and one that has hung up while
-    its build waited for a worker nothing (its session is discarded unused).  A built
+    its build waited for a worker nothing (its session is discarded unused).  Whatever
+    else raises gives `failure_page` and one log line: nothing raises out of here
+    (Panel would print the traceback and show it to the visitor).  A built
     session's objects are kept out of the garbage collector's walks while it is open
     (`MEMORY`)."""
     doc = pn.state.curdoc
@@ -167,7 +178,16 @@ def serve_page() -> None:
         log.debug("page refused to %s: past its page builds", client)
         refusal_page(BUILDS.retry_after(client)).servable(title="Zharii contact explorer")
         return
-    explorer, page = build_page(pn.state.session_args, location_of(request))
-    explorer.servable(page)
+    try:
+        explorer, page = build_page(pn.state.session_args, location_of(request))
+        explorer.servable(page)
+    except Exception as err:  # (Panel would show the visitor the traceback)
+        log.error("page could not be served to %s for %s: %s: %s (a short page instead)",
+                  client, quoted(dict(pn.state.session_args)), type(err).__name__,
+                  quoted(str(err)))
+        doc.clear()
+        doc.add_root(PullGuard())
+        failure_page().servable(title="Zharii contact explorer")
+        return
     pn.state.on_session_destroyed(lambda _: MEMORY.closed())
     MEMORY.built()

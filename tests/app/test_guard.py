@@ -9,6 +9,7 @@ once at the widget, without recursion. Served: the links that blanked the page b
 
 from __future__ import annotations
 
+import logging
 import math
 import sys
 import urllib.request
@@ -129,14 +130,17 @@ def test_a_value_no_browser_sends_is_refused_once(slider: str, value: float) -> 
 
 
 @pytest.mark.parametrize("link", ["?tau0=1.57079632679", "??psi=1",
-                                  "?x=" + "1" * 5000, "?motor_N=5e-324"])
-def test_served_links_build_the_explorer(served, link: str) -> None:  # noqa: F811
+                                  "?x=" + "1" * 5000, "?motor_N=5e-324", "?view=present"])
+def test_served_links_build_the_explorer(served, link: str, caplog) -> None:  # noqa: F811
     """Over HTTP: the page's session holds the explorer's document (before, the page
-    build raised and the session's document was empty)."""
+    build raised and the session's document was empty), and nothing raised while the
+    page was made servable (the presentation view leaves sliders off the page)."""
     url, server = served
     before = {s.id for s in server.get_sessions("/main")}
-    with urllib.request.urlopen(url + link) as r:
+    with caplog.at_level(logging.ERROR), urllib.request.urlopen(url + link) as r:
         assert r.status == 200
+    assert not [rec for rec in caplog.records if rec.levelno >= logging.ERROR], \
+        [rec.getMessage() for rec in caplog.records]
     new = [s for s in server.get_sessions("/main") if s.id not in before]
     assert len(new) == 1
     doc = new[0].document
@@ -295,3 +299,28 @@ def test_a_sessions_pulls_have_their_burst_then_their_rate() -> None:
     doc.to_json()
     with pytest.raises(PullRefused):
         doc.to_json()
+
+
+def test_a_page_that_cannot_be_served_shows_no_traceback(served, monkeypatch, caplog,  # noqa: F811
+                                                          capsys) -> None:
+    """Whatever raises while the page is made servable, the visitor gets a short page
+    and the server one log line: Panel would print the traceback and show it on the
+    page (it catches what a function application raises)."""
+    url, server = served
+
+    def broken(self, page=None):
+        raise LookupError("a part of the page was not found")
+
+    monkeypatch.setattr(Explorer, "servable", broken)
+    before = {s.id for s in server.get_sessions("/main")}
+    with caplog.at_level(logging.INFO, logger="app.page.guard"), \
+            urllib.request.urlopen(url) as r:
+        assert r.status == 200
+    [session] = [s for s in server.get_sessions("/main") if s.id not in before]
+    texts = [getattr(m, "text", "") or "" for m in session.document.models]
+    assert any("could not be shown" in t for t in texts), texts
+    assert not any("Traceback" in t or "LookupError" in t for t in texts)
+    assert "Traceback" not in capsys.readouterr().out
+    lines = [rec for rec in caplog.records if rec.name == "app.page.guard"]
+    assert len(lines) == 1 and lines[0].exc_info is None
+    assert "LookupError: 'a part of the page was not found'" in lines[0].getMessage()
