@@ -22,7 +22,7 @@ from bokeh.models import (
     Text,
 )
 
-from app.contact.spheres import show
+from app.kit.changes import show
 from app.kit.figures import (
     CURVE_POINTS,
     DATA_LEVEL,

@@ -11,7 +11,7 @@ from bokeh.models import (
     Range1d,
 )
 
-from app.contact.spheres import show
+from app.kit.changes import show
 from app.kit.figures import (
     CURVE_POINTS,
     DATA_LEVEL,

@@ -39,7 +39,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from bokeh.core.property.validation import validate
 from bokeh.models import (
     ColumnDataSource,
     Label,
@@ -57,6 +56,7 @@ from bokeh.plotting import figure
 
 from app.contact import pictograms
 from app.contact.phases import STICK_COLOR, style
+from app.kit.changes import put, show
 from app.kit.figures import (
     FRAME_LEVEL,
     Scene,
@@ -66,7 +66,7 @@ from app.kit.figures import (
     stamp,
     style_figure,
 )
-from app.kit.wire import column, inline
+from app.kit.wire import column
 from core import Contact
 from core.clock import half_sines
 
@@ -336,42 +336,3 @@ class SpheresScene(Scene):
         for name, cols in drawing(c, np.array([tau])).items():
             show(self.sources[name], {k: column(v[0]) for k, v in cols.items()})
 
-
-def show(source: ColumnDataSource, data: dict) -> None:
-    """Give `source` this data (`send`), unless it holds it already (nothing is sent
-    then): every column equal in value, as `np.array_equal` has it."""
-    held = source.data
-    if data.keys() != held.keys() or not all(_same(held[k], v) for k, v in data.items()):
-        send(source, data)
-
-
-def send(source: ColumnDataSource, data: dict) -> None:
-    """Give `source` this data, its numeric arrays sent inline (`app.kit.wire.inline`).
-
-    Without Bokeh's validation of every column and value (two thirds of the cost of a
-    set, for data the scenes build valid: a dict of equal-length columns of numbers or
-    text); the value held and sent is the same (Bokeh's `validate(False)` skips the
-    check only)."""
-    with validate(False):
-        source.data = inline(data)
-
-
-def _same(held, new) -> bool:
-    """Whether column `new` equals column `held` in value (`np.array_equal`), for two
-    numeric arrays or two lists of text without its conversions."""
-    if isinstance(held, np.ndarray) and isinstance(new, np.ndarray) \
-            and held.dtype.kind in "fiu" and new.dtype.kind in "fiu":
-        return held.shape == new.shape and bool((held == new).all())
-    if isinstance(held, list) and isinstance(new, list) \
-            and all(isinstance(x, str) for x in new):
-        return held == new
-    return np.array_equal(np.asarray(held), np.asarray(new))
-
-
-def put(model, **values) -> None:
-    """Set the properties `values` of a Bokeh `model` that differ from those it holds
-    (Bokeh sends no equal value either, but validates it first: a set costs more than
-    a look)."""
-    for name, value in values.items():
-        if getattr(model, name) != value:
-            setattr(model, name, value)

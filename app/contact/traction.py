@@ -16,7 +16,7 @@ from bokeh.models import (
 )
 
 from app.contact.phases import STICK_COLOR, style
-from app.contact.spheres import put, show
+from app.kit.changes import put, show
 from app.kit.figures import (
     DATA_LEVEL,
     FRAME_LEVEL,
