@@ -125,6 +125,7 @@ class Controls:
         self.physical_box = self.physical_inputs.physical_box
         self.material_select = self.physical_inputs.material_select
         self.physical_card = self.physical_inputs.card
+        self._drive_shown: tuple[bool, str] | None = None
         self.show_drive(state)
         self.formulas = pn.pane.LaTeX(  # (scaled down to fit a narrow card; else scroll)
             "", renderer="katex", sizing_mode="stretch_width", styles={"overflow-x": "auto"},
@@ -155,7 +156,12 @@ class Controls:
     def show_drive(self, state: ExplorerState) -> None:
         """The sliders of what follows from other inputs disabled (psi with the drive's
         angle or SI inputs, theta with psi or SI inputs, tau0 with SI inputs;
-        `ContactView.show_state` derives them) and the note on mu and nu."""
+        `ContactView.show_state` derives them) and the note on mu and nu; nothing when
+        they show this state's already (every move of a slider calls this)."""
+        shown = (state.physical, state.drive)
+        if shown == self._drive_shown:
+            return
+        self._drive_shown = shown
         angle = state.drive == "angle"
         self.psi_slider.disabled = state.physical or angle
         self.tau0_slider.disabled = state.physical
