@@ -226,6 +226,20 @@ def _values(doc: Document) -> dict:
     return out
 
 
+def _sent_unchanged(doc: Document, ex: Explorer, psi: float) -> list[tuple]:
+    """The (model type, name, property) of what a psi move to `psi` (as a move in the
+    browser arrives) sent holding the value it held before; the move must send something."""
+    before = _values(doc)
+    events = []
+    doc.on_change(events.append)
+    ex.contact.controls.psi_slider._slider.value = psi
+    assert events
+    return [(type(e.model).__name__, e.model.name, getattr(e, "attr", "data"))
+            for e in events
+            if _same(before.get((e.model.id, getattr(e, "attr", "data"))),
+                     getattr(e.model, getattr(e, "attr", "data")))]
+
+
 @pytest.mark.parametrize("psi", [2.51, 0.8, 7.0])
 def test_a_psi_move_sets_only_what_changes(ex: Explorer, psi: float) -> None:
     """Every property a psi move sends holds a new value: each costs the server its
@@ -233,16 +247,7 @@ def test_a_psi_move_sets_only_what_changes(ex: Explorer, psi: float) -> None:
     doc = Document()
     ex.view().server_doc(doc)
     ex.contact.controls.psi_slider.value = 2.5  # (leaves the preset)
-    before = _values(doc)
-    events = []
-    doc.on_change(events.append)
-    ex.contact.controls.psi_slider._slider.value = psi  # as a move in the browser arrives
-    assert events
-    unchanged = [(type(e.model).__name__, e.model.name, getattr(e, "attr", "data"))
-                 for e in events
-                 if _same(before.get((e.model.id, getattr(e, "attr", "data"))),
-                          getattr(e.model, getattr(e, "attr", "data")))]
-    assert unchanged == []
+    assert _sent_unchanged(doc, ex, psi) == []
 
 
 @pytest.mark.parametrize("tab", [0, 2, 3])  # T(tau), the radii with Fig. 4a, the motion
@@ -254,16 +259,7 @@ def test_a_psi_move_below_1_sends_nothing_held_already(ex: Explorer, tab: int) -
     ex.view().server_doc(doc)
     ex.contact.tabs.active = tab
     ex.contact.controls.psi_slider.value = 0.8  # (leaves the preset)
-    before = _values(doc)
-    events = []
-    doc.on_change(events.append)
-    ex.contact.controls.psi_slider._slider.value = 0.81  # as a move in the browser arrives
-    assert events
-    unchanged = [(type(e.model).__name__, e.model.name, getattr(e, "attr", "data"))
-                 for e in events
-                 if _same(before.get((e.model.id, getattr(e, "attr", "data"))),
-                          getattr(e.model, getattr(e, "attr", "data")))]
-    assert unchanged == []
+    assert _sent_unchanged(doc, ex, 0.81) == []
 
 
 def test_what_depends_on_tau0_alone_follows_tau0(ex: Explorer) -> None:
