@@ -1,6 +1,7 @@
 """One log line per burst, not a traceback per message: a websocket closed with messages
 still queued, websockets naming a session id this server did not sign, and whole-document
-pulls past their session's limit (`app.page.pulls`).
+pulls past their session's limit (`app.page.pulls`); and a cap on the lines of Tornado's
+access log (`Cap`), which writes one per request, refused or not.
 
 A client that sends many messages without waiting for the answers (e.g. PULL-DOC
 requests in a loop) and then closes leaves them in the server's read buffer.  Tornado
@@ -118,10 +119,51 @@ class Burst(logging.Filter):
             "args": (), "exc_info": None, "exc_text": None, "stack_info": None})
 
 
-def quiet_closed_connections(window: float = 10.0) -> list[tuple[str, Burst]]:
+class Cap(logging.Filter):
+    """Passes at most `limit` records in each `window` s and drops the others; the first
+    record passed after a drop says how many were dropped.  For a logger that writes a
+    line per request (Tornado's access log: a client opening websockets in a loop, each
+    refused, wrote ~650 lines a second), whatever the requests are."""
+
+    def __init__(self, limit: int, window: float = 10.0,
+                 clock: Callable[[], float] = time.monotonic) -> None:
+        super().__init__()
+        self.limit, self.window, self._clock = limit, window, clock
+        self._started = -float("inf")  # when the current window began
+        self._passed = 0  # records passed in it
+        self.dropped = 0  # records dropped since the last one passed
+        self._lock = threading.Lock()
+
+    def filter(self, record: logging.LogRecord) -> bool | logging.LogRecord:
+        now = self._clock()
+        with self._lock:
+            if now - self._started >= self.window:
+                self._started, self._passed = now, 0
+            if self._passed >= self.limit:
+                self.dropped += 1
+                return False
+            self._passed += 1
+            dropped, self.dropped = self.dropped, 0
+        if not dropped:
+            return True
+        return logging.makeLogRecord({
+            **record.__dict__, "msg": f"{record.getMessage()} ({dropped} lines of this log "
+                                      f"before it not written: more than {self.limit} "
+                                      f"within {self.window:g} s)",
+            "args": ()})
+
+
+#: Tornado's access log (a line per request) and the lines it may write per minute: a
+#: class of 60 loading the page at once (a dozen requests each) is logged whole; a flood
+#: writes at most ~17 lines a second.
+ACCESS_LOGGER, ACCESS_LINES, ACCESS_WINDOW_S = "tornado.access", 1000, 60.0
+
+
+def quiet_closed_connections(window: float = 10.0) -> list[tuple[str, logging.Filter]]:
     """Put a `Burst` filter on each logger that writes lines per message queued on a
-    closed websocket or per websocket refused for its token's signature; returns the
-    (logger name, filter) pairs (call once, at start)."""
+    closed websocket, per websocket refused for its token's signature or per refused
+    pull, and a `Cap` of `ACCESS_LINES` per `ACCESS_WINDOW_S` on Tornado's access log;
+    returns the (logger name, filter) pairs (call once, at start)."""
     filters = [
         (PROTOCOL_LOGGER, Burst(detached_session, "messages that arrived on a websocket "
                                 "after it closed were dropped (Bokeh's AssertionError)",
@@ -138,6 +180,7 @@ def quiet_closed_connections(window: float = 10.0) -> list[tuple[str, Burst]]:
         (TORNADO_LOGGER, Burst(refused_token, "websockets refused: session token not "
                                "signed with this server's key (Bokeh's ProtocolError)",
                                window)),
+        (ACCESS_LOGGER, Cap(ACCESS_LINES, ACCESS_WINDOW_S)),
     ]
     for name, f in filters:
         logging.getLogger(name).addFilter(f)

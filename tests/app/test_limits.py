@@ -12,11 +12,13 @@ import pytest
 from bokeh.server.connection import ServerConnection
 
 from app.page.limits import (
+    ACCESS_LOGGER,
     BAD_SIGNATURE,
     CLOSED_SEND,
     PROTOCOL_LOGGER,
     WS_LOGGER,
     Burst,
+    Cap,
     bad_signature,
     closed_send,
     detached_session,
@@ -128,6 +130,38 @@ def test_quiet_closed_connections_turns_a_flood_into_one_line(caplog):
             "a real error"]
         assert lines[0].exc_info is None
         assert "Traceback" not in caplog.text
+    finally:
+        for name, f in filters:
+            logging.getLogger(name).removeFilter(f)
+
+
+def test_the_access_log_writes_at_most_its_cap_per_window_and_says_what_it_dropped():
+    now = [0.0]
+    cap = Cap(3, window=60.0, clock=lambda: now[0])
+
+    def line(n: int) -> logging.LogRecord:
+        return logging.makeLogRecord({"name": "tornado.access", "levelno": logging.INFO,
+                                      "msg": "%d GET /main/ws (%s) %.2fms",
+                                      "args": (101, "127.0.0.1", n)})
+
+    passed = [cap.filter(line(n)) for n in range(10)]
+    assert passed[:3] == [True] * 3 and not any(passed[3:])
+    assert cap.dropped == 7
+    now[0] = 59.9  # the same window: still dropped
+    assert cap.filter(line(10)) is False
+    now[0] = 60.0  # a new window: its first line says how many were not written
+    first = cap.filter(line(11))
+    assert first.getMessage() == ("101 GET /main/ws (127.0.0.1) 11.00ms (8 lines of this "
+                                  "log before it not written: more than 3 within 60 s)")
+    assert cap.filter(line(12)) is True and cap.dropped == 0
+
+
+def test_quiet_closed_connections_caps_the_access_log():
+    filters = quiet_closed_connections()
+    try:
+        caps = [f for name, f in filters if name == ACCESS_LOGGER]
+        assert len(caps) == 1 and isinstance(caps[0], Cap)
+        assert caps[0] in logging.getLogger(ACCESS_LOGGER).filters
     finally:
         for name, f in filters:
             logging.getLogger(name).removeFilter(f)
