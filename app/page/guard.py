@@ -24,6 +24,7 @@ from typing import Any
 import panel as pn
 from panel.io.location import Location
 
+from app.page import bucket
 from app.page.explorer import Explorer
 from app.page.memory import SessionMemory
 from app.page.pulls import PullGuard
@@ -105,14 +106,11 @@ class BuildLimit:
         now = self._clock()
         with self._lock:
             tokens, when = self._buckets.get(client, (self.burst, now))
-            tokens = min(self.burst, tokens + (now - when) * self.rate)
             if len(self._buckets) >= self.clients and client not in self._buckets:
                 self._forget_full(now)
-            if tokens < 1.0:
-                self._buckets[client] = (tokens, now)
-                return False
-            self._buckets[client] = (tokens - 1.0, now)
-            return True
+            tokens, taken = bucket.take(tokens, now - when, self.burst, self.rate)
+            self._buckets[client] = (tokens, now)
+            return taken
 
     def retry_after(self, client: str) -> float:
         """Seconds until `client` may have a page built again."""
@@ -168,7 +166,8 @@ def serve_page() -> None:
     session's objects are kept out of the garbage collector's walks while it is open
     (`MEMORY`)."""
     doc = pn.state.curdoc
-    doc.add_root(PullGuard())  # (first: serialized before the rest, see app.page.pulls)
+    pulls = PullGuard()
+    doc.add_root(pulls)  # (first: serialized before the rest, see app.page.pulls)
     request = doc.session_context.request
     client = str(request.remote_ip)
     if gone(request):
@@ -186,7 +185,7 @@ def serve_page() -> None:
                   client, quoted(dict(pn.state.session_args)), type(err).__name__,
                   quoted(str(err)))
         doc.clear()
-        doc.add_root(PullGuard())
+        doc.add_root(pulls)
         failure_page().servable(title="Zharii contact explorer")
         return
     pn.state.on_session_destroyed(lambda _: MEMORY.closed())

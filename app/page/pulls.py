@@ -26,6 +26,8 @@ from typing import Any
 from bokeh.core.serialization import Serializer
 from bokeh.model import DataModel
 
+from app.page import bucket
+
 #: A session's pulls: its page's own and a few reconnections at once, then one a minute.
 BURST, RATE = 4.0, 1.0 / 60.0
 
@@ -49,12 +51,10 @@ class PullGuard(DataModel):
         """Take one pull from the bucket; False (nothing taken) when it is empty."""
         with self._lock:
             now = self._clock()
-            self._tokens = min(self._burst, self._tokens + (now - self._when) * self._rate)
+            self._tokens, taken = bucket.take(self._tokens, now - self._when, self._burst,
+                                              self._rate)
             self._when = now
-            if self._tokens < 1.0:
-                return False
-            self._tokens -= 1.0
-            return True
+            return taken
 
     def to_serializable(self, serializer: Serializer) -> Any:
         """Bokeh's representation of the model, if the bucket has a pull left."""
