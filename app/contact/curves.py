@@ -265,7 +265,6 @@ class RadiiScene(CurveScene):
                                         name="radii_bracket")
         #: Fig. 4b's disks: the Fig. 6 times that lie in the contact
         self.disks = ColumnDataSource({"tau": [], "a": [], "label": []}, name="radii_disks")
-        self._tau0 = ""  # (float.hex) the tau0 of Fig. 4a and the disks shown
 
     @cached_property
     def drive_figure(self):
@@ -311,9 +310,8 @@ class RadiiScene(CurveScene):
         """The curves, and Fig. 4a with the Fig. 6 disks (tau0 alone: drawn again only
         when tau0 changes)."""
         super().update_contact(c)
-        if c.tau0.hex() == self._tau0:  # (bit for bit: -0.0 is not 0.0)
+        if not self.new_tau0(c):
             return
-        self._tau0 = c.tau0.hex()
         tau = np.unique(np.concatenate([np.linspace(0.0, math.pi, 241), [c.tau0, c.tau_end]]))
         uz = c.drive_displacement(tau)  # u_z0 / H = u_x0 / u0 = sin tau (eq 3)
         s0 = math.sin(c.tau0)

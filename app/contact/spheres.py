@@ -283,7 +283,6 @@ class SpheresScene(Scene):
                              name="spheres_rest_note", **ground)
         fig.add_layout(self.note)
         fig.add_layout(self.h_label)
-        self._tau0 = ""  # (float.hex) the tau0 of the period strip and pictograms shown
         # every plot's stamp follows the forces' time; this one top right, beside the
         # upper sphere
         follow_clock(s["spheres_forces"])
@@ -305,8 +304,7 @@ class SpheresScene(Scene):
             "dashed: at rest, h ≤ 0 (a preload)"
         put(self.h_label, text=f"{gap}\ndrive line at θ = {math.degrees(c.theta):.1f}°")
         put(self.note, text=scale_note(c))
-        if c.tau0.hex() != self._tau0:  # (bit for bit: -0.0 is not 0.0)
-            self._tau0 = c.tau0.hex()
+        if self.new_tau0(c):
             self._show_period(c, cy)
 
     def _show_period(self, c: Contact, cy: float) -> None:

@@ -71,13 +71,11 @@ class TractionScene(Scene):
         self.stamp = stamp(fig, x_units="data", y_units="data", text_baseline="top")
         style_figure(fig)
         self.figure = fig
-        self._tau0 = ""  # (float.hex) the tau0 of the r grid
 
     def update_contact(self, c: Contact) -> None:
         """The r grid and the plot's ranges and labels, after the largest contact radius
         a/a* and pressure p/p* (at pi/2: eqs 6, 7, which depend on tau0 alone)."""
-        if c.tau0.hex() != self._tau0:  # (bit for bit: -0.0 is not 0.0)
-            self._tau0 = c.tau0.hex()
+        if self.new_tau0(c):
             self._a_max = float(c.contact_radius(math.pi / 2))
             self._p_max = float(c.pressure(0.0, math.pi / 2))
             self.r_grid = np.linspace(-1.05 * self._a_max, 1.05 * self._a_max,

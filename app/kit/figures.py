@@ -314,9 +314,21 @@ class Scene:
     """Base: a figure, its named source, and the two update hooks."""
 
     name: str = ""
+    #: the tau0 (`float.hex`) of what the scene drew that depends on tau0 alone
+    _drawn_tau0: str | None = None
 
     def __init__(self, data: dict) -> None:
         self.source = ColumnDataSource(data=data, name=self.name)
+
+    def new_tau0(self, c: Contact) -> bool:
+        """Whether `c`'s tau0 differs from that of the last call, bit for bit (-0.0 is not
+        0.0; True on the first call): what depends on tau0 alone is drawn again only
+        then."""
+        key = c.tau0.hex()
+        if key == self._drawn_tau0:
+            return False
+        self._drawn_tau0 = key
+        return True
 
     def update_contact(self, c: Contact) -> None:
         """Recompute what depends on the parameters (default: nothing)."""
