@@ -136,20 +136,25 @@ input.setAttribute("aria-label", data.label);
 if (data.show_title) { title.textContent = data.label + ": " + data.value; }
 """
 
-#: JavaScript of `LabelledSlider`: Page Up / Page Down move five steps (as BokehJS's
-#: sliders do; the browser's range input moves one).
-_SLIDER_PAGE = """
-const pages = {PageUp: 5, PageDown: -5};
-if (event != null && event.key in pages) {
-  event.preventDefault();
-  input.stepUp(pages[event.key]);
-  data.value = parseFloat(input.value);
-}
-"""
+#: JavaScript of `LabelledSlider`: the input's value into the model (`data.value`).
+_SLIDER_SET = "data.value = parseFloat(input.value);"
 
 #: JavaScript of `DirectSlider`: the value set with BokehJS's `setv`, which Panel does not
 #: take for a change of the parameter (it takes what a script assigns, ``data.NAME = ...``).
 _DIRECT_SET = "data.setv({value: parseFloat(input.value)});"
+
+
+def _slider_page(set_value: str) -> str:
+    """JavaScript of a slider's keys: Page Up / Page Down move five steps (as BokehJS's
+    sliders do; the browser's range input moves one), the value then set by `set_value`."""
+    return f"""
+const pages = {{PageUp: 5, PageDown: -5}};
+if (event != null && event.key in pages) {{
+  event.preventDefault();
+  input.stepUp(pages[event.key]);
+  {set_value}
+}}
+"""
 
 
 class LabelledSlider(WrittenHTML):
@@ -188,8 +193,8 @@ class LabelledSlider(WrittenHTML):
         "render": _SLIDER_SHOW,
         **dict.fromkeys(("value", "start", "end", "step", "label", "disabled"),
                         _SLIDER_SHOW),
-        "input": "data.value = parseFloat(input.value);",
-        "keydown": _SLIDER_PAGE,
+        "input": _SLIDER_SET,
+        "keydown": _slider_page(_SLIDER_SET),
     }
 
     #: The input as wide as the component, 24 px high (WCAG 2.5.8's least target).
@@ -214,7 +219,7 @@ class DirectSlider(LabelledSlider):
     _scripts: ClassVar[dict[str, str]] = {
         **LabelledSlider._scripts,
         "input": _DIRECT_SET,
-        "keydown": _SLIDER_PAGE.replace("data.value = parseFloat(input.value);", _DIRECT_SET),
+        "keydown": _slider_page(_DIRECT_SET),
     }
 
 
