@@ -20,6 +20,7 @@ from typing import Protocol
 
 import panel as pn
 
+from app.contact.formulas import FORMULAS_TAG
 from app.contact.notes import NOTES
 from app.contact.physical_inputs import PhysicalInputs
 from app.contact.play_button import PlayButton
@@ -129,7 +130,7 @@ class Controls:
         self.show_drive(state)
         self.formulas = pn.pane.LaTeX(  # (scaled down to fit a narrow card; else scroll)
             "", renderer="katex", sizing_mode="stretch_width", styles={"overflow-x": "auto"},
-            stylesheets=[FORMULA_CSS], tags=["formulas"])
+            stylesheets=[FORMULA_CSS], tags=[FORMULAS_TAG])
         self.downloads = {key: self._download(key, view.csv_file) for key in DOWNLOADS}
 
     @staticmethod

@@ -13,6 +13,10 @@ from html import escape
 
 from core import PHASE_NAMES, Phase
 
+#: The tag of the formula card's model in a page (the browser's player and
+#: `app.kit.texts.write_text` find it by it).
+FORMULAS_TAG = "formulas"
+
 _COMMON = r"""
 $$p(r) = \frac{4G}{(1-\nu)\pi R}\sqrt{a^2 - r^2}$$
 

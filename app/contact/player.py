@@ -43,7 +43,7 @@ from bokeh.models import ColumnDataSource, CustomJS, Label
 from bokeh.plotting import figure as Figure
 
 from app.contact.curves import CurveScene
-from app.contact.formulas import formulas
+from app.contact.formulas import FORMULAS_TAG, formulas
 from app.contact.phases import style
 from app.contact.traction import DiscScene, TractionScene
 from app.kit.wire import column
@@ -56,7 +56,7 @@ FRAMES_PER_CONTACT = 240  # one contact at speed 1 in CONTACT_SECONDS: 60 frames
 _PLAY_JS = Path(__file__).with_name("player.js").read_text()
 
 #: The tags by which the server finds the controls the script writes (`Player.play`).
-CONTROL_TAGS = {"entry": "tau-entry", "slider": "tau-slider", "formula": "formulas"}
+CONTROL_TAGS = {"entry": "tau-entry", "slider": "tau-slider", "formula": FORMULAS_TAG}
 
 
 class Sprite(Protocol):

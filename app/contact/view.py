@@ -31,7 +31,7 @@ from app.contact.animation import Animation
 from app.contact.controls import Controls
 from app.contact.curves import ForceScene, MotionScene, RadiiScene
 from app.contact.data import caption, captions, readout_rows
-from app.contact.formulas import formulas
+from app.contact.formulas import FORMULAS_TAG, formulas
 from app.contact.impulse import ImpulseScene
 from app.contact.multiples import SmallMultiples
 from app.contact.notes import NOTES
@@ -42,6 +42,7 @@ from app.contact.state import PRESETS, SI_KEYS, ExplorerState, drive_angle
 from app.contact.traction import DiscScene, TractionScene
 from app.kit.figures import Scene
 from app.kit.style import TAB_ROW_CSS
+from app.kit.texts import PaneText
 from core import Contact
 
 #: The state's parameters that define the contact (`ExplorerState.contact`).
@@ -72,6 +73,7 @@ class ContactView(param.Parameterized):
                                     self.impulse, self.radii, self.motion]
         self.readout = Readout()
         self.controls = Controls(state, self)
+        self._formulas = PaneText(self.controls.formulas, FORMULAS_TAG)
         self.player = Player(self.traction, self.disc, [self.force, self.radii, self.motion],
                              self.traction.caption, self.traction.phase_label,
                              self.traction.figure, captions,
@@ -200,7 +202,7 @@ class ContactView(param.Parameterized):
         phase = int(c.phase(tau))  # a 0-d array for one tau
         if phase != self._shown_phase:
             self._shown_phase = phase
-            self.controls.formulas.object = formulas(phase)
+            self._formulas.write(formulas(phase))
 
     # ---------------------------------------------------------------- presets
 

@@ -75,6 +75,35 @@ class WrittenHTML(ReactiveHTML):
             model.update(**changed)
 
 
+class PaneText:
+    """The text of a pane whose Bokeh model's `text` is its object as given (a `LaTeX`
+    pane rendered by KaTeX), written past Panel's update of the pane: Panel would build
+    the pane's stylesheet models anew (~0.6 ms of server CPU) for the same message.
+
+    The pane's model is found in the current document by its tag `tag` (a search of the
+    whole document: ~1.5 ms, so once per document)."""
+
+    def __init__(self, pane: pn.pane.PaneBase, tag: str) -> None:
+        self.pane, self.tag = pane, tag
+        self._model: Model | None = None
+
+    def write(self, text: str) -> None:
+        """Set the pane's object to `text` and write it into the pane's model in the
+        current document; where the pane is not rendered there, set it as usual."""
+        if self.pane.object == text:
+            return
+        doc = pn.state.curdoc
+        if doc is not None and (self._model is None or self._model.document is not doc):
+            self._model = doc.select_one({"tags": [self.tag]})
+        if doc is None or self._model is None:
+            self.pane.object = text
+            return
+        with param.parameterized.discard_events(self.pane):  # (Panel's watchers not called)
+            self.pane.object = text
+        with hold():  # (a change held already goes out with the others)
+            self._model.text = text
+
+
 _DESCRIBE = """
 fig.setAttribute("aria-label", data.label);
 fig.setAttribute("aria-describedby", desc.id);

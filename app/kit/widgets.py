@@ -370,6 +370,8 @@ class ExactSlider(pn.viewable.Viewer):
 
     def set_range(self, start: float, end: float, value: float) -> None:
         """Give the slider a new range of its own and the value `value` (in it)."""
+        if (start, end) == self._range and value == self.value:
+            return  # (a move that changes neither: most of them, for the tau slider)
         self._range = (start, end)
         self.param.update(start=min(start, value), end=max(end, value), value=value)
 

@@ -716,6 +716,35 @@ def test_the_player_writes_the_pages_tau_box_slider_and_formulas() -> None:
     assert {args[k].document for k in ("entry", "slider", "formula")} == {doc}
 
 
+def test_the_formula_card_follows_the_phase_in_its_page() -> None:
+    """In a page's document, a move to another phase writes that phase's formulas, and
+    nothing else, into the formula card's model (past Panel's update of the pane,
+    `app.kit.texts.PaneText`), with no model added; a move within the phase writes
+    nothing."""
+    from bokeh.document.events import ModelChangedEvent
+    from panel.io import hold
+    from panel.io.state import set_curdoc
+
+    ex = Explorer()
+    doc = Document()
+    doc.add_root(ex.view().get_root(doc))
+    [model] = [m for m in doc.models if "formulas" in m.tags]
+    events: list = []
+    doc.on_change(lambda e: events.append(e))
+    with set_curdoc(doc):
+        for psi, tau in ((0.5, 1.0), (0.6, 1.0), (3.0, 1.0), (3.0, 2.2)):
+            models = set(doc.models)
+            events.clear()
+            with hold(doc):
+                ex.state.param.update(psi=psi, tau=tau)
+            phase = int(ex.contact.shown.phase(tau))
+            assert model.text == ex.contact.controls.formulas.object == formulas(phase)
+            assert set(doc.models) == models
+            written = [e.attr for e in events
+                       if isinstance(e, ModelChangedEvent) and e.model is model]
+            assert written == (["text"] if psi != 0.6 else []), (psi, tau)
+
+
 # ---------------------------------------------------------- physical units
 
 
