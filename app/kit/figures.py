@@ -21,6 +21,7 @@ import unicodedata
 import numpy as np
 from bokeh.events import LODStart, RangesUpdate
 from bokeh.models import (
+    AllIndices,
     BoxZoomTool,
     ColumnDataSource,
     CustomJS,
@@ -119,10 +120,17 @@ def lean(fig) -> None:
     for muted points: no plot has a selection tool and every legend hides (never mutes)
     its curves, so those copies are never drawn; with 'auto' BokehJS makes one if ever
     needed.  Two models fewer per glyph in every page (each model costs the server
-    per page load)."""
+    per page load, and on every message: Bokeh indexes the document's models for
+    each).  For the same reason the renderers share one filter of all rows (their
+    views' `AllIndices`, which holds nothing: it returns every row of the source it is
+    given)."""
+    every: AllIndices | None = None
     for r in fig.renderers:
         if isinstance(r, GlyphRenderer):
             r.nonselection_glyph = r.muted_glyph = "auto"
+            if type(r.view.filter) is AllIndices:
+                every = every or r.view.filter
+                r.view.filter = every
 
 
 #: What `draw` gives the renderer (the rest goes to the glyph), as Bokeh's glyph methods.

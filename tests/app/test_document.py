@@ -318,7 +318,7 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
     # screen readers (`app.kit.texts`: their text, a property of their data model, is
     # all they send)
     texts = {(type(m).__name__, m.name, attr) for m in doc.models
-             for name, attr in [("derived_quantities", "rows"),
+             for name, attr in [("derived_quantities", "cells"),
                                 *((f"{k}_description", "description")
                                   for k in ("spheres", "traction", "disc", "curves"))]
              if m.name == name and attr in m.properties()}
