@@ -86,23 +86,33 @@ class PaneText:
 
     def __init__(self, pane: pn.pane.PaneBase, tag: str) -> None:
         self.pane, self.tag = pane, tag
-        self._model: Model | None = None
+        self._found: tuple[Document, Model | None] | None = None  # (document, its model)
 
     def write(self, text: str) -> None:
         """Set the pane's object to `text` and write it into the pane's model in the
-        current document; where the pane is not rendered there, set it as usual."""
+        current document; where the pane is not rendered there (or more than once), set
+        it as usual."""
         if self.pane.object == text:
             return
         doc = pn.state.curdoc
-        if doc is not None and (self._model is None or self._model.document is not doc):
-            self._model = doc.select_one({"tags": [self.tag]})
-        if doc is None or self._model is None:
+        model = self._model(doc) if doc is not None else None
+        if model is None:
             self.pane.object = text
             return
         with param.parameterized.discard_events(self.pane):  # (Panel's watchers not called)
             self.pane.object = text
         with hold():  # (a change held already goes out with the others)
-            self._model.text = text
+            model.text = text
+
+    def _model(self, doc: Document) -> Model | None:
+        if (self._found is None or self._found[0] is not doc
+                or (self._found[1] is not None and self._found[1].document is not doc)):
+            try:
+                model = doc.select_one({"tags": [self.tag]})
+            except ValueError:  # (several models of that tag)
+                model = None
+            self._found = (doc, model)
+        return self._found[1]
 
 
 _DESCRIBE = """
