@@ -716,6 +716,24 @@ def test_the_player_writes_the_pages_tau_box_slider_and_formulas() -> None:
     assert {args[k].document for k in ("entry", "slider", "formula")} == {doc}
 
 
+def test_each_figures_renderers_share_one_filter_of_all_rows() -> None:
+    """Bokeh gives each glyph's view a filter of its own; the page's figures give all
+    their renderers one (`app.kit.figures.lean`): one model per figure, not per glyph,
+    indexed by Bokeh on every message."""
+    from bokeh.models import AllIndices, GlyphRenderer
+    from bokeh.plotting import figure
+
+    doc = Document()
+    doc.add_root(Explorer().view().get_root(doc))
+    figures = [m for m in doc.models if isinstance(m, figure)]
+    assert len(figures) >= 4
+    for fig in figures:
+        filters = {id(r.view.filter) for r in fig.renderers if isinstance(r, GlyphRenderer)
+                   and isinstance(r.view.filter, AllIndices)}
+        assert len(filters) <= 1, fig.title.text
+    assert sum(isinstance(m, AllIndices) for m in doc.models) <= len(figures)
+
+
 def test_the_formula_card_follows_the_phase_in_its_page() -> None:
     """In a page's document, a move to another phase writes that phase's formulas, and
     nothing else, into the formula card's model (past Panel's update of the pane,
