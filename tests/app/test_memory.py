@@ -21,7 +21,7 @@ class Node:
 @pytest.fixture
 def memory():
     gc.collect()
-    m = SessionMemory(share=0.25)
+    m = SessionMemory(share=0.25, freeze_from=1)
     yield m
     m.stop()
     gc.collect()
@@ -74,3 +74,32 @@ def test_no_build_freezes_while_a_sweep_waits_for_its_collection(memory) -> None
     gc.collect()
     memory.built()
     assert not memory.sweeping and gc.get_freeze_count() > 0
+
+
+def test_with_few_open_nothing_is_frozen_and_a_close_needs_no_sweep() -> None:
+    """Below `freeze_from` open sessions a build freezes nothing, so a close is
+    reclaimed by a collection of the few open sessions (a sweep would walk all that the
+    server froze at its start); the build that reaches it freezes them all."""
+    gc.collect()
+    m = SessionMemory(share=0.25, freeze_from=3)
+    try:
+        before = gc.get_freeze_count()
+        docs = []
+        for _ in range(2):
+            docs.append(Node())
+            m.built()
+        assert gc.get_freeze_count() == before
+        dead = weakref.ref(docs.pop())
+        m.closed()
+        assert not m.sweeping and gc.get_freeze_count() == before
+        gc.collect()
+        assert dead() is None
+        for _ in range(2):
+            docs.append(Node())
+            m.built()  # 2, then 3 open: the third freezes
+        assert m.open == 3 and gc.get_freeze_count() > before
+        m.closed()  # 1 of 2 left: a quarter: a sweep
+        assert m.sweeping and gc.get_freeze_count() == 0
+    finally:
+        m.stop()
+        gc.collect()
