@@ -14,7 +14,7 @@ from html import escape
 from core import PHASE_NAMES, Phase
 
 #: The tag of the formula card's model in a page (the browser's player and
-#: `app.kit.texts.write_text` find it by it).
+#: `app.kit.texts.PaneText` find it by it).
 FORMULAS_TAG = "formulas"
 
 _COMMON = r"""

@@ -30,6 +30,20 @@ from panel.io import hold
 from panel.reactive import ReactiveHTML
 
 
+def write_past_panel(component: param.Parameterized, values: dict[str, Any], model: Model,
+                     properties: dict[str, Any]) -> None:
+    """Set `component`'s parameters `values` without calling Panel's watchers, and its
+    Bokeh `model`'s `properties` (what Panel would have written for them) in the current
+    document: the same message, without Panel's recomputation of the component."""
+    with param.parameterized.discard_events(component):  # (Panel's watchers not called)
+        component.param.update(**values)
+    if pn.state.curdoc.callbacks.hold_value:  # (a change held already goes out with the others)
+        model.update(**properties)
+        return
+    with hold():  # (outside Panel's handling of a change, Bokeh's lock may not be held)
+        model.update(**properties)
+
+
 class WrittenHTML(ReactiveHTML):
     """A `ReactiveHTML` whose parameters are written into its Bokeh data model (`write`).
 
@@ -66,14 +80,7 @@ class WrittenHTML(ReactiveHTML):
         if model is None:
             self.param.update(**changed)
             return
-        with param.parameterized.discard_events(self):  # (Panel's watchers not called)
-            for k, v in changed.items():
-                setattr(self, k, v)
-        if doc.callbacks.hold_value:  # (a change held already goes out with the others)
-            model.update(**changed)
-            return
-        with hold():  # (outside Panel's handling of a change, Bokeh's lock may not be held)
-            model.update(**changed)
+        write_past_panel(self, changed, model, changed)
 
 
 class PaneText:
@@ -99,10 +106,7 @@ class PaneText:
         if model is None:
             self.pane.object = text
             return
-        with param.parameterized.discard_events(self.pane):  # (Panel's watchers not called)
-            self.pane.object = text
-        with hold():  # (a change held already goes out with the others)
-            model.text = text
+        write_past_panel(self.pane, {"object": text}, model, {"text": text})
 
     def _model(self, doc: Document) -> Model | None:
         if (self._found is None or self._found[0] is not doc
