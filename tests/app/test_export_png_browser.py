@@ -148,8 +148,11 @@ def test_a_saved_png_names_psi_tau0_and_tau(browser, url) -> None:
     # the same plot without its stamp, saved in another tab of the same link (Chromium
     # lets a tab's second download through only while the click's activation lasts:
     # on a loaded machine the save's PNG can come later)
-    wait_until(lambda: f"psi={psi!r}" in page.url, what="the link")
-    other, _ = open_explorer(browser, page.url)
+    # (waited for in the page: Playwright's `page.url` follows the address bar only when
+    # another of its calls runs, so polling it alone may never see the write)
+    page.wait_for_function("(p) => location.search.includes('psi=' + p)", arg=repr(psi),
+                           timeout=20_000)
+    other, _ = open_explorer(browser, page.evaluate("() => location.href"))
     wait_until(lambda: page.evaluate(JS_PLOT, title)["stamp"]
                == other.evaluate(JS_PLOT, title)["stamp"], what="the same stamp")
     other.evaluate(JS_SHOW_STAMP, [title, False])
