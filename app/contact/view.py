@@ -123,8 +123,10 @@ class ContactView(param.Parameterized):
             fixes["theta"] = drive_angle(c.psi, s.mu, s.nu)
         fixes["tau"] = min(max(s.tau, c.tau0), c.tau_end)
         fixes = {k: v for k, v in fixes.items() if getattr(s, k) != v}
-        if fixes:
-            s.param.update(**fixes)  # (which calls this again)
+        if fixes:  # (which calls this again; not `param.update`, which reads every
+            with param.parameterized.batch_call_watchers(s):  # parameter of the state
+                for name, value in fixes.items():  # first)
+                    setattr(s, name, value)
             return
         if (c, c.scales) != (self.shown, self.shown.scales):
             self.shown = c

@@ -36,7 +36,8 @@ def write_past_panel(component: param.Parameterized, values: dict[str, Any], mod
     Bokeh `model`'s `properties` (what Panel would have written for them) in the current
     document: the same message, without Panel's recomputation of the component."""
     with param.parameterized.discard_events(component):  # (Panel's watchers not called)
-        component.param.update(**values)
+        for name, value in values.items():  # (not `param.update`: it reads every
+            setattr(component, name, value)  # parameter of the component first)
     if pn.state.curdoc.callbacks.hold_value:  # (a change held already goes out with the others)
         model.update(**properties)
         return
