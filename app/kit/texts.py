@@ -90,7 +90,8 @@ class PaneText:
     the pane's stylesheet models anew (~0.6 ms of server CPU) for the same message.
 
     The pane's model is found in the current document by its tag `tag` (a search of the
-    whole document: ~1.5 ms, so once per document)."""
+    whole document: ~1.5 ms, so once per document, once it has its page: a write while
+    the page is built, before the pane is rendered, does not settle where it is)."""
 
     def __init__(self, pane: pn.pane.PaneBase, tag: str) -> None:
         self.pane, self.tag = pane, tag
@@ -116,6 +117,8 @@ class PaneText:
                 model = doc.select_one({"tags": [self.tag]})
             except ValueError:  # (several models of that tag)
                 model = None
+            if model is None and not doc.roots:  # (a page being built: not yet rendered)
+                return None
             self._found = (doc, model)
         return self._found[1]
 

@@ -737,18 +737,23 @@ def test_each_figures_renderers_share_one_filter_of_all_rows() -> None:
 def test_the_formula_card_follows_the_phase_in_its_page() -> None:
     """In a page's document, a move to another phase writes that phase's formulas, and
     nothing else, into the formula card's model (past Panel's update of the pane,
-    `app.kit.texts.PaneText`), with no model added; a move within the phase writes
-    nothing."""
+    `app.kit.texts.PaneText`: Panel's watchers of the pane are not called), with no
+    model added; a move within the phase writes nothing.  The page is built as a
+    server builds it, in its document (the formulas are first written before the pane
+    is rendered)."""
     from bokeh.document.events import ModelChangedEvent
     from panel.io import hold
     from panel.io.state import set_curdoc
 
-    ex = Explorer()
     doc = Document()
-    doc.add_root(ex.view().get_root(doc))
+    with set_curdoc(doc):
+        ex = Explorer()
+        doc.add_root(ex.view().get_root(doc))
     [model] = [m for m in doc.models if "formulas" in m.tags]
     events: list = []
     doc.on_change(lambda e: events.append(e))
+    panels: list = []  # (Panel's own update of the pane)
+    ex.contact.controls.formulas.param.watch(panels.append, "object")
     with set_curdoc(doc):
         for psi, tau in ((0.5, 1.0), (0.6, 1.0), (3.0, 1.0), (3.0, 2.2)):
             models = set(doc.models)
@@ -761,6 +766,7 @@ def test_the_formula_card_follows_the_phase_in_its_page() -> None:
             written = [e.attr for e in events
                        if isinstance(e, ModelChangedEvent) and e.model is model]
             assert written == (["text"] if psi != 0.6 else []), (psi, tau)
+    assert panels == []
 
 
 # ---------------------------------------------------------- physical units
