@@ -89,13 +89,15 @@ class PaneText:
     pane rendered by KaTeX), written past Panel's update of the pane: Panel would build
     the pane's stylesheet models anew (~0.6 ms of server CPU) for the same message.
 
-    The pane's model is found in the current document by its tag `tag` (a search of the
-    whole document: ~1.5 ms, so once per document, once it has its page: a write while
-    the page is built, before the pane is rendered, does not settle where it is)."""
+    The pane's model is found in the current document by its tag `tag`: a search of the
+    whole document (~1.5 ms), so once per document, and again only while it is not
+    found and the document has gained models since (a write while the page is being
+    built comes before the pane is rendered)."""
 
     def __init__(self, pane: pn.pane.PaneBase, tag: str) -> None:
         self.pane, self.tag = pane, tag
-        self._found: tuple[Document, Model | None] | None = None  # (document, its model)
+        #: the document searched, its number of models then, the model found there
+        self._found: tuple[Document, int, Model | None] | None = None
 
     def write(self, text: str) -> None:
         """Set the pane's object to `text` and write it into the pane's model in the
@@ -111,16 +113,19 @@ class PaneText:
         write_past_panel(self.pane, {"object": text}, model, {"text": text})
 
     def _model(self, doc: Document) -> Model | None:
-        if (self._found is None or self._found[0] is not doc
-                or (self._found[1] is not None and self._found[1].document is not doc)):
-            try:
-                model = doc.select_one({"tags": [self.tag]})
-            except ValueError:  # (several models of that tag)
-                model = None
-            if model is None and not doc.roots:  # (a page being built: not yet rendered)
+        found = self._found
+        if found is not None and found[0] is doc:
+            model = found[2]
+            if model is not None and model.document is doc:
+                return model
+            if model is None and found[1] == len(doc.models):
                 return None
-            self._found = (doc, model)
-        return self._found[1]
+        try:
+            model = doc.select_one({"tags": [self.tag]})
+        except ValueError:  # (several models of that tag)
+            model = None
+        self._found = (doc, len(doc.models), model)
+        return model
 
 
 _DESCRIBE = """

@@ -44,8 +44,9 @@ from panel.io.state import set_curdoc
 pn.extension("katex", notifications=False)
 from app.page.explorer import Explorer
 doc = Document()
-explorer = Explorer()
-doc.add_root(explorer.view().get_root(doc))
+with set_curdoc(doc):  # (as a server builds a page: in its document)
+    explorer = Explorer()
+    doc.add_root(explorer.view().get_root(doc))
 doc.to_json()
 events = []
 doc.on_change(lambda e: events.append(e) if isinstance(e, DocumentPatchedEvent) else None)

@@ -740,12 +740,15 @@ def test_the_formula_card_follows_the_phase_in_its_page() -> None:
     `app.kit.texts.PaneText`: Panel's watchers of the pane are not called), with no
     model added; a move within the phase writes nothing.  The page is built as a
     server builds it, in its document (the formulas are first written before the pane
-    is rendered)."""
+    is rendered; the request's guard is the document's first root, `app.page.guard`)."""
     from bokeh.document.events import ModelChangedEvent
     from panel.io import hold
     from panel.io.state import set_curdoc
 
+    from app.page.pulls import PullGuard
+
     doc = Document()
+    doc.add_root(PullGuard())
     with set_curdoc(doc):
         ex = Explorer()
         doc.add_root(ex.view().get_root(doc))
