@@ -9,7 +9,7 @@ pause writes them once.  The page puts them beside the plots (`app.page.layout`)
 
 from __future__ import annotations
 
-import numpy as np
+import math
 
 from app.contact.state import ExplorerState
 from app.contact.view import TAB_TITLES, ContactView
@@ -24,18 +24,13 @@ PLOT_NAMES = {"spheres": "The two spheres (Fig. 2)", "traction": "Traction profi
 
 
 def phase_start(c: Contact, tau: float) -> float:
-    """When the phase of `c` at time `tau` (rad) began: the first time of the run of that
-    phase that holds `tau` (to 1e-9 rad; tau0 for the phase the contact starts in)."""
-    phase = int(c.phase(tau))
-    grid = np.linspace(c.tau0, tau, 200)
-    other = np.nonzero(c.phase(grid) != phase)[0]
-    if len(other) == 0:
-        return c.tau0
-    lo, hi = float(grid[other[-1]]), float(grid[other[-1] + 1])
-    while hi - lo > 1e-9:  # (phase(lo) is another phase, phase(hi) this one)
-        mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if int(c.phase(mid)) == phase else (mid, hi)
-    return hi
+    """When the phase of `c` at time `tau` (rad) began, from core's phase boundaries
+    (``core.tangential.phase``): full stick and slip at tau0 (the contact's start),
+    partial stick at pi/2 (the end of loading), counter-slip at tau1 (eq 31); nan
+    outside the contact."""
+    starts = {Phase.FULL_STICK: c.tau0, Phase.SLIP: c.tau0,
+              Phase.PARTIAL_STICK: math.pi / 2, Phase.COUNTER_SLIP: c.tau1}
+    return starts.get(int(c.phase(tau)), math.nan)
 
 
 def announcement(c: Contact, tau: float) -> str:
@@ -47,9 +42,10 @@ def announcement(c: Contact, tau: float) -> str:
 def descriptions(c: Contact, tau: float, tab: int) -> dict[str, str]:
     """A short text of what each plot (`PLOT_NAMES`) shows at time `tau` (rad), the
     curve tab `tab` open: the numbers are core's."""
-    phase = PHASE_NAMES[int(c.phase(tau))]
-    T, P = float(c.tangential_force(tau)), float(c.normal_force(tau))
-    a, b = float(c.contact_radius(tau)), float(c.stick_radius(tau))
+    line = c.at(tau)  # (one evaluation of core for every quantity at tau)
+    phase = PHASE_NAMES[int(line.phase)]
+    T, P = float(line.tangential_force), float(line.normal_force)
+    a, b = float(line.contact_radius), float(line.stick_radius)
     at = f"at τ = {tau:.3f} rad"
     span = f"over the contact, τ from {c.tau0:.3f} to {c.tau_end:.3f} rad"
     curves = (
