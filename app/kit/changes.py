@@ -12,6 +12,7 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
+from bokeh.core.property.validation import validate
 from bokeh.model import Model
 from bokeh.models import ColumnDataSource
 
@@ -21,10 +22,13 @@ from app.kit.wire import inline
 def show(source: ColumnDataSource, data: dict[str, Any]) -> None:
     """Give `source` this data, its numeric arrays sent inline (`app.kit.wire.inline`),
     unless it holds it already (nothing is sent then): every column equal in value, as
-    `np.array_equal` has it."""
+    `np.array_equal` has it.  Bokeh does not validate the columns (`validate(False)`,
+    local to this call): they are arrays and lists of text that the scenes make, and
+    Bokeh's check of every column was ~a third of a psi move's source updates."""
     held = source.data
     if data.keys() != held.keys() or not all(same(held[k], v) for k, v in data.items()):
-        source.data = inline(data)
+        with validate(False):
+            source.data = inline(data)
 
 
 def same(held: Any, new: Any) -> bool:
