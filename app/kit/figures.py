@@ -33,6 +33,7 @@ from bokeh.models import (
     PanTool,
     Range1d,
     SaveTool,
+    UnionRenderers,
     WheelZoomTool,
 )
 from bokeh.plotting import figure
@@ -123,14 +124,20 @@ def lean(fig) -> None:
     per page load, and on every message: Bokeh indexes the document's models for
     each).  For the same reason the renderers share one filter of all rows (their
     views' `AllIndices`, which holds nothing: it returns every row of the source it is
-    given)."""
+    given), and their sources one selection policy (`UnionRenderers`, which holds
+    nothing; a source's `Selection` can only be given when it is made)."""
     every: AllIndices | None = None
+    policy: UnionRenderers | None = None
     for r in fig.renderers:
         if isinstance(r, GlyphRenderer):
             r.nonselection_glyph = r.muted_glyph = "auto"
             if type(r.view.filter) is AllIndices:
                 every = every or r.view.filter
                 r.view.filter = every
+            source = r.data_source
+            if isinstance(source, ColumnDataSource):
+                policy = policy or source.selection_policy
+                source.selection_policy = policy
 
 
 #: What `draw` gives the renderer (the rest goes to the glyph), as Bokeh's glyph methods.

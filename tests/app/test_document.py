@@ -717,9 +717,10 @@ def test_the_player_writes_the_pages_tau_box_slider_and_formulas() -> None:
 
 
 def test_each_figures_renderers_share_one_filter_of_all_rows() -> None:
-    """Bokeh gives each glyph's view a filter of its own; the page's figures give all
-    their renderers one (`app.kit.figures.lean`): one model per figure, not per glyph,
-    indexed by Bokeh on every message."""
+    """Bokeh gives each glyph's view a filter of its own, and each source a selection
+    policy; the page's figures give all their renderers one of each
+    (`app.kit.figures.lean`): one model per figure, not per glyph, indexed by Bokeh on
+    every message."""
     from bokeh.models import AllIndices, GlyphRenderer
     from bokeh.plotting import figure
 
@@ -731,6 +732,9 @@ def test_each_figures_renderers_share_one_filter_of_all_rows() -> None:
         filters = {id(r.view.filter) for r in fig.renderers if isinstance(r, GlyphRenderer)
                    and isinstance(r.view.filter, AllIndices)}
         assert len(filters) <= 1, fig.title.text
+        policies = {id(r.data_source.selection_policy) for r in fig.renderers
+                    if isinstance(r, GlyphRenderer)}
+        assert len(policies) == 1, fig.title.text  # (one selection policy per figure)
     assert sum(isinstance(m, AllIndices) for m in doc.models) <= len(figures)
 
 
