@@ -24,6 +24,7 @@ from typing import Any, ClassVar
 
 import panel as pn
 import param
+from bokeh.core.property.validation import validate
 from bokeh.document import Document
 from bokeh.model import Model
 from panel.io import hold
@@ -38,11 +39,13 @@ def write_past_panel(component: param.Parameterized, values: dict[str, Any], mod
     with param.parameterized.discard_events(component):  # (Panel's watchers not called)
         for name, value in values.items():  # (not `param.update`: it reads every
             setattr(component, name, value)  # parameter of the component first)
+    # (the values passed the parameters' own checks: Bokeh's are not repeated)
     if pn.state.curdoc.callbacks.hold_value:  # (a change held already goes out with the others)
-        model.update(**properties)
+        with validate(False):
+            model.update(**properties)
         return
-    with hold():  # (outside Panel's handling of a change, Bokeh's lock may not be held)
-        model.update(**properties)
+    with hold(), validate(False):  # (outside Panel's handling of a change, Bokeh's lock
+        model.update(**properties)  # may not be held)
 
 
 class WrittenHTML(ReactiveHTML):
