@@ -123,9 +123,10 @@ class ContactView(param.Parameterized):
             fixes["theta"] = drive_angle(c.psi, s.mu, s.nu)
         fixes["tau"] = min(max(s.tau, c.tau0), c.tau_end)
         fixes = {k: v for k, v in fixes.items() if getattr(s, k) != v}
-        if fixes:  # (which calls this again; not `param.update`, which reads every
-            with param.parameterized.batch_call_watchers(s):  # parameter of the state
-                for name, value in fixes.items():  # first)
+        if fixes:  # set in one batch of watchers, which calls this again (not with
+            # `param.update`, which reads every parameter of the state first)
+            with param.parameterized.batch_call_watchers(s):
+                for name, value in fixes.items():
                     setattr(s, name, value)
             return
         if (c, c.scales) != (self.shown, self.shown.scales):

@@ -19,6 +19,7 @@ same property, without Panel's recomputation.
 
 from __future__ import annotations
 
+import contextlib
 import json
 from typing import Any, ClassVar
 
@@ -39,13 +40,12 @@ def write_past_panel(component: param.Parameterized, values: dict[str, Any], mod
     with param.parameterized.discard_events(component):  # (Panel's watchers not called)
         for name, value in values.items():  # (not `param.update`: it reads every
             setattr(component, name, value)  # parameter of the component first)
-    # (the values passed the parameters' own checks: Bokeh's are not repeated)
-    if pn.state.curdoc.callbacks.hold_value:  # (a change held already goes out with the others)
-        with validate(False):
-            model.update(**properties)
-        return
-    with hold(), validate(False):  # (outside Panel's handling of a change, Bokeh's lock
-        model.update(**properties)  # may not be held)
+    # a change held already goes out with the others; outside Panel's handling of a
+    # change, Bokeh's lock may not be held (`hold`); the values passed the parameters'
+    # own checks, so Bokeh's are not repeated
+    held = pn.state.curdoc.callbacks.hold_value
+    with contextlib.nullcontext() if held else hold(), validate(False):
+        model.update(**properties)
 
 
 class WrittenHTML(ReactiveHTML):
