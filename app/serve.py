@@ -2,11 +2,13 @@
 
 A `panel serve app/main.py` with the settings a deployment needs fixed in one place:
 
-- **Pages built off the event loop.** The application is a function
-  (`applications`), whose documents Bokeh builds on a worker thread: a page build
-  (~0.4 s of CPU) shares the interpreter with the sessions already open instead of
-  stopping them; and a thread holds the interpreter for at most 0.5 ms while another
-  waits (``SWITCH_INTERVAL_S``), so that their moves are not held up by it.
+- **Pages built off the event loop, and only for a browser.** A page's HTML holds a
+  shell; the explorer is built into it once the browser has opened the page's websocket
+  (`app.page.guard.serve_page`), on one of Bokeh's worker threads: a page build (~0.4 s
+  of CPU) shares the interpreter with the sessions already open instead of stopping
+  them, and a page fetched without its websocket builds nothing.  A thread holds the
+  interpreter for at most 0.5 ms while another waits (``SWITCH_INTERVAL_S``), so that
+  their moves are not held up by it.
 - **Security headers on every HTML page.** A Content-Security-Policy with a fresh nonce
   per response: the page's own inline scripts carry the nonce, so a script injected into
   the page (e.g. an ``<img onerror=...>`` smuggled through a URL) does not run.  BokehJS
@@ -243,13 +245,12 @@ def server_options(args: argparse.Namespace) -> dict:
 
 
 def applications() -> dict:
-    """The server's one application, /main: each session's page built by
+    """The server's one application, /main: each session's page served by
     `app.page.guard.serve_page` (what `panel serve app/main.py` runs as a script).
 
-    Given as a function, not as the script: Bokeh builds a function application's
-    documents on a worker thread (a script's on the event loop, since it runs with the
-    process's globals patched), so the ~0.4 s a page build takes does not hold up the
-    sessions already open; they share the interpreter with it instead of waiting."""
+    Given as a function, not as the script: Bokeh runs a function application on a
+    worker thread (a script on the event loop, since it runs with the process's globals
+    patched)."""
     import panel as pn
 
     from app.page.guard import serve_page

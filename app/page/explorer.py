@@ -16,8 +16,6 @@ import html
 
 import panel as pn
 import param
-from panel.io.location import Location
-from panel.io.resources import get_dist_path
 
 from app.contact.state import ExplorerState
 from app.contact.view import CONTACT_INPUTS, ContactView
@@ -40,11 +38,8 @@ FOLLOWED = ("physical", "drive", "psi", "tau0", "mu", "nu")
 class Explorer(param.Parameterized):
     """One user's page: the features, the URL, the messages."""
 
-    def __init__(self, state: ExplorerState | None = None, query: dict | None = None,
-                 location: Location | None = None) -> None:
+    def __init__(self, state: ExplorerState | None = None, query: dict | None = None) -> None:
         super().__init__()
-        #: the page's URL (`app.page.guard.location_of`), None without a served page
-        self.location = location
         self.state = state or ExplorerState()
         parts = url.split(dict(query or {}))
         self.messages = url.apply_contact(self.state, parts.contact)
@@ -184,20 +179,13 @@ class Explorer(param.Parameterized):
                             self.dem], self.describer.descriptions,
                            self.describer.announcer, [self.url_writer])
 
-    def servable(self, page: pn.Column | None = None) -> pn.Column:
-        """Mark the page servable in the session being built (`app.page.guard`).
-
-        Panel points its components' stylesheets at its CDN until it renders the page's
-        HTML, and then at the server's own copies.  With `--num-procs` above 1 a page's
-        websocket may reach a process that did not serve the page, which builds the
-        session's document for the websocket alone: its stylesheets would stay on the
-        CDN, which the page's Content-Security-Policy refuses (and an offline classroom
-        cannot reach).  So the document says where they are before it is built."""
+    def attach(self, shell: pn.Column, page: pn.Column | None = None) -> pn.Column:
+        """Show `page` (default: `view()`) in the served `shell` (`app.page.guard.shell`),
+        in the session whose document is being filled: its end stops the explorer's
+        runs, its sliders take the browser's moves as they arrive."""
         doc = pn.state.curdoc
-        doc.template_variables.setdefault("dist_url", get_dist_path(cdn=False))
-        page = (page or self.view()).servable(title=layout.TITLE,
-                                              location=self.location or True)
-        doc.template_variables["meta"] = layout.META
+        page = page or self.view()
+        shell.objects = [page]
         pn.state.on_session_destroyed(self.close)
         for slider in self.contact.controls.sliders():
             slider.follow_browser(doc)  # (its moves without Panel's 50 ms wait)

@@ -1,10 +1,15 @@
 """Every page build guarded: whatever a link holds, the visitor gets a page.
 
+A page load has two steps (`serve_page`).  The page's HTML holds a shell only (a column
+saying the explorer is loading: `serve_shell`, a few ms); the explorer is built into it
+once the browser has loaded the page and opened its websocket (`fill`), so that a page
+fetched without its websocket (a link preview, a crawler, a script in a loop) builds
+nothing.
+
 `build_page` builds one session's explorer from the page's URL and, if anything raises
 while reading the URL or building a scene, builds the default explorer instead with a
-message saying why; the server logs one line (no traceback per request).
-
-`serve_page` refuses, cheaply, a client that has had too many pages built (`BuildLimit`).
+message saying why; the server logs one line (no traceback per request).  `fill`
+refuses, cheaply, a client that has had too many pages built (`BuildLimit`).
 
 The URL is read through `SafeLocation`, Panel's `Location` whose query parser takes any
 text: Panel's own fails on some links that a browser sends as they are (a doubled
@@ -19,12 +24,14 @@ import reprlib
 import threading
 import time
 from collections.abc import Callable, Mapping
+from functools import partial
 from typing import Any
 
 import panel as pn
 from panel.io.location import Location
+from panel.io.resources import get_dist_path
 
-from app.page import bucket
+from app.page import bucket, layout
 from app.page.explorer import Explorer
 from app.page.memory import SessionMemory
 from app.page.pulls import PullGuard
@@ -67,17 +74,16 @@ def location_of(request: Any) -> SafeLocation:
         return SafeLocation()
 
 
-def build_page(query: Mapping[str, Any], location: SafeLocation | None
-               ) -> tuple[Explorer, pn.Column]:
+def build_page(query: Mapping[str, Any]) -> tuple[Explorer, pn.Column]:
     """The explorer for URL `query` (as `pn.state.session_args` gives it) and its page;
     if building them raises, the default explorer with a message naming what failed."""
     try:
-        explorer = Explorer(query=dict(query), location=location)
+        explorer = Explorer(query=dict(query))
         return explorer, explorer.view()
     except Exception as err:
         log.warning("page build failed for %s: %s: %s (the defaults are shown)",
                     quoted(dict(query)), type(err).__name__, quoted(str(err)))
-        explorer = Explorer(location=location)
+        explorer = Explorer()
         explorer.show_messages([f"This link could not be shown ({type(err).__name__}: "
                                 f"{err}); the default contact is shown instead."])
         return explorer, explorer.view()
@@ -87,11 +93,12 @@ class BuildLimit:
     """How many pages one client address may have built: a token bucket of `burst`
     builds, refilled at `rate` per second.
 
-    A page build takes ~0.4 s of CPU on a worker thread (`app.serve.applications`),
-    which the sessions already open share the interpreter with: a client loading pages
-    in a loop would slow every lecture on its process.  Past its bucket a client gets
-    `refusal_page`, which costs a few ms.  `burst` is sized for a class behind one
-    address (a school's NAT) opening the page at once; `rate` for that class reloading
+    A page build takes ~0.4 s of CPU on a worker thread (`serve_page`), which the
+    sessions already open share the interpreter with: a client loading pages in a loop
+    would slow every lecture on its process.  Past its bucket a client gets
+    `refusal_note` in its page instead of the explorer, which costs a few ms.  `burst`
+    is sized for a class behind one address (a school's NAT) opening the page at once;
+    `rate` for that class reloading
     now and then.  Idle clients' buckets are forgotten (at most `clients` are kept).
     """
 
@@ -132,61 +139,93 @@ BUILDS = BuildLimit()
 MEMORY = SessionMemory()
 
 
-def refusal_page(seconds: float) -> pn.Column:
-    """The page a client gets past its page builds: what happened and when to retry."""
-    return pn.Column(pn.pane.HTML(
-        "<h1>Zharii contact explorer</h1><p role='alert'>Too many pages were opened from "
-        f"your network just now. Please reload this page in {math.ceil(seconds)} s.</p>"))
+HEADING = "<h1>Zharii contact explorer</h1>"
 
 
-def failure_page() -> pn.Column:
-    """The page a client gets when its page could not be served at all: what happened
-    (the server logged why; the visitor sees no traceback)."""
-    return pn.Column(pn.pane.HTML(
-        "<h1>Zharii contact explorer</h1><p role='alert'>This page could not be shown. "
-        "Please reload it; if it fails again, open the explorer's address without "
-        "anything after <code>?</code>.</p>"))
+def loading_note() -> pn.pane.HTML:
+    """What the page shows until its explorer is built."""
+    return pn.pane.HTML(f"{HEADING}<p role='status'>Loading the explorer…</p>")
 
 
-def gone(request: Any) -> bool:
-    """Whether the client of `request` (Bokeh's session request) has hung up: the HTTP
-    connection of its page load is closed.  A websocket's request, whose connection the
-    websocket has taken over, is never gone."""
-    stream = getattr(getattr(request, "connection", None), "stream", None)
-    return stream is not None and stream.closed()
+def refusal_note(seconds: float) -> pn.pane.HTML:
+    """What a client past its page builds gets: what happened and when to retry."""
+    return pn.pane.HTML(
+        f"{HEADING}<p role='alert'>Too many pages were opened from your network just now. "
+        f"Please reload this page in {math.ceil(seconds)} s.</p>")
+
+
+def failure_note() -> pn.pane.HTML:
+    """What a client gets when its page could not be served at all: what happened (the
+    server logged why; the visitor sees no traceback)."""
+    return pn.pane.HTML(
+        f"{HEADING}<p role='alert'>This page could not be shown. Please reload it; if it "
+        "fails again, open the explorer's address without anything after "
+        "<code>?</code>.</p>")
+
+
+def serve_shell(location: SafeLocation | None) -> pn.Column:
+    """The session's page as its HTML holds it: a column showing `loading_note`, into
+    which `fill` puts the explorer; the page's title, its meta tags and its URL
+    (`location`, Panel's, kept in step with the browser's address bar).
+
+    Panel points its components' stylesheets at its CDN until it renders the page's
+    HTML, and then at the server's own copies; what is added to the document later (the
+    explorer), and a document built for a websocket alone (with `--num-procs` above 1
+    a page's websocket may reach another process), keeps them on the CDN unless the
+    document says where they are, which it does here (the page's Content-Security-Policy
+    refuses the CDN, and an offline classroom cannot reach it)."""
+    doc = pn.state.curdoc
+    doc.template_variables.setdefault("dist_url", get_dist_path(cdn=False))
+    shell = pn.Column(loading_note(), sizing_mode="stretch_width", margin=0)
+    shell.servable(title=layout.TITLE, location=location or True)
+    doc.template_variables["meta"] = layout.META
+    return shell
+
+
+def fill(shell: pn.Column, client: str, query: Mapping[str, Any]) -> None:
+    """Build the explorer for URL `query` into `shell` (`serve_shell`), guarded as
+    `build_page` says; a client past its page builds (`BUILDS`) gets `refusal_note`
+    instead.  Whatever else raises gives `failure_note` and one log line.  A built
+    session's objects are kept out of the garbage collector's walks while it is open
+    (`MEMORY`)."""
+    if not BUILDS.allow(client):
+        log.debug("page refused to %s: past its page builds", client)
+        shell.objects = [refusal_note(BUILDS.retry_after(client))]
+        return
+    try:
+        explorer, page = build_page(query)
+        explorer.attach(shell, page)
+    except Exception as err:  # (Panel would show the visitor the traceback)
+        log.error("page could not be served to %s for %s: %s: %s (a short page instead)",
+                  client, quoted(dict(query)), type(err).__name__, quoted(str(err)))
+        shell.objects = [failure_note()]
+        return
+    pn.state.on_session_destroyed(lambda _: MEMORY.closed())
+    MEMORY.built()
 
 
 def serve_page() -> None:
-    """Build the page of the session being created (the server's application)
-    from its URL, guarded as `build_page` says, and mark it servable; a client past its
-    page builds (`BUILDS`) gets `refusal_page` instead, and one that has hung up while
-    its build waited for a worker nothing (its session is discarded unused).  Whatever
-    else raises gives `failure_page` and one log line: nothing raises out of here
-    (Panel would print the traceback and show it to the visitor).  A built
-    session's objects are kept out of the garbage collector's walks while it is open
-    (`MEMORY`)."""
+    """Serve the session being created (the server's application): its page's HTML
+    holds only `serve_shell`'s column; the explorer is built into it by `fill` once the
+    browser has loaded the page (its websocket open, the column shown: Panel's
+    ``onload``), on one of Bokeh's worker threads with the session's document locked,
+    and sent to the browser as one change of the document.  A page load whose browser
+    never opens its websocket (a link preview, a crawler, a script fetching the page in
+    a loop) builds nothing (its cost is Panel's rendering of the HTML, a few tens of
+    ms).  Nothing raises out of here (Panel would print the traceback and show it to
+    the visitor)."""
     doc = pn.state.curdoc
     pulls = PullGuard()
     doc.add_root(pulls)  # (first: serialized before the rest, see app.page.pulls)
     request = doc.session_context.request
-    client = str(request.remote_ip)
-    if gone(request):
-        log.debug("page not built for %s: the client has gone", client)
-        return
-    if not BUILDS.allow(client):
-        log.debug("page refused to %s: past its page builds", client)
-        refusal_page(BUILDS.retry_after(client)).servable(title="Zharii contact explorer")
-        return
+    query = dict(pn.state.session_args)
     try:
-        explorer, page = build_page(pn.state.session_args, location_of(request))
-        explorer.servable(page)
+        shell = serve_shell(location_of(request))
     except Exception as err:  # (Panel would show the visitor the traceback)
-        log.error("page could not be served to %s for %s: %s: %s (a short page instead)",
-                  client, quoted(dict(pn.state.session_args)), type(err).__name__,
-                  quoted(str(err)))
+        log.error("page could not be served for %s: %s: %s (a short page instead)",
+                  quoted(query), type(err).__name__, quoted(str(err)))
         doc.clear()
         doc.add_root(pulls)
-        failure_page().servable(title="Zharii contact explorer")
+        pn.Column(failure_note()).servable(title=layout.TITLE)
         return
-    pn.state.on_session_destroyed(lambda _: MEMORY.closed())
-    MEMORY.built()
+    pn.state.onload(partial(fill, shell, str(request.remote_ip), query))

@@ -25,15 +25,17 @@ from tornado.httpclient import AsyncHTTPClient
 from tornado.websocket import WebSocketClosedError
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from load_test import Session, Stats, _strings, models_of, pct, usage
+from load_test import REFUSED, Session, Stats, _strings, models_of, pct, usage
 
-#: The abusive clients of `--abuse`, in the order they run (the page loops last: they
-#: use up the page builds of the address every client here shares, 127.0.0.1).
-#: ``page-loop`` is recorded from the loop's first request (the address's burst of page
-#: builds, `app.page.guard.BUILDS`, is spent in the window); ``page-loop-steady`` from
-#: its first refused page on (one build per refill, refusals between).
+#: The abusive clients of `--abuse`, in the order they run (the page-load loops last:
+#: they use up the page builds of the address every client here shares, 127.0.0.1).
+#: ``page-loop`` fetches the page's HTML in a loop and never opens its websocket;
+#: ``page-load-loop`` loads the page whole, as a browser does, and is recorded from its
+#: first load (the address's burst of page builds, `app.page.guard.BUILDS`, is spent in
+#: the window); ``page-load-loop-steady`` from its first refused load on (one build per
+#: refill, refusals between).
 ABUSE_KINDS = ("invented-ids", "pull-doc", "methods-16x", "nan", "page-loop",
-               "page-loop-steady")
+               "page-load-loop", "page-load-loop-steady")
 
 #: The probe's p95 under abuse may be at most this many times its baseline (issue 22).
 ABUSE_TARGET = 1.5
@@ -48,9 +50,6 @@ NAN_RATE = 20.0
 NAN_VALUES = (float("nan"), float("inf"), float("-inf"),
               {"type": "number", "value": "nan"}, {"type": "number", "value": "+inf"})
 
-#: The title of the page a client past its page builds gets (`app.page.guard`): a
-#: server page's HTML holds its title, the document's text comes by the websocket.
-REFUSAL_TITLE = "<title>Zharii contact explorer</title>"
 METHODS_TITLE = "Methods: numerical"
 LIVE_LABEL = "Recompute live on every change"
 
@@ -101,14 +100,32 @@ async def paced(stop: asyncio.Event, rate: float):
 
 
 async def abuse_page_loop(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
-                          counts: dict, ready: asyncio.Event | None = None) -> None:
-    """GET the page in a loop, each as soon as the previous one is answered; `ready` (if
-    given) is set at the first refused page, and only then are pages counted."""
+                          counts: dict) -> None:
+    """GET the page in a loop, each as soon as the previous one is answered, never
+    opening its websocket (a crawler, a script)."""
     while not stop.is_set():
         r = await http.fetch(url, request_timeout=60, raise_error=False)
-        body = r.body.decode(errors="replace") if r.body else ""
-        key = ("refused" if REFUSAL_TITLE in body else "built" if r.code == 200
-               else f"HTTP {r.code}")
+        key = "pages" if r.code == 200 else f"HTTP {r.code}"
+        counts[key] = counts.get(key, 0) + 1
+
+
+async def abuse_page_load_loop(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
+                               counts: dict, ready: asyncio.Event | None = None) -> None:
+    """Load the page in a loop as a browser does (its HTML, its websocket, the document,
+    the document-ready event, then the explorer built into it), each load as soon as
+    the previous one has its explorer or its refusal, then closed; `ready` (if given) is
+    set at the first refused load, and only then are loads counted."""
+    while not stop.is_set():
+        s = Session(url, http, 5.0, None)
+        try:
+            await asyncio.wait_for(s.open(), 120)
+            key = "built"
+        except LookupError as err:
+            key = "refused" if REFUSED in str(err) else "no explorer"
+        except (TimeoutError, ConnectionError, WebSocketClosedError, OSError):
+            key = "failed"
+        finally:
+            s.close()
         if ready is not None and not ready.is_set():
             if key != "refused":
                 continue
@@ -221,19 +238,19 @@ async def abuse_nan(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
     await flood(url, http, stop, counts, NAN_RATE, value, "ERROR", "server ERROR replies")
 
 
-async def abuse_page_loop_steady(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
-                                 counts: dict, ready: asyncio.Event) -> None:
-    """`abuse_page_loop`, recorded once the address's page builds are spent."""
-    await abuse_page_loop(url, http, stop, counts, ready)
+async def abuse_page_load_loop_steady(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
+                                      counts: dict, ready: asyncio.Event) -> None:
+    """`abuse_page_load_loop`, recorded once the address's page builds are spent."""
+    await abuse_page_load_loop(url, http, stop, counts, ready)
 
 
 #: The abusers that set their `ready` event themselves (the others are recorded from
 #: their start).
-PRELUDE = {"page-loop-steady": abuse_page_loop_steady}
+PRELUDE = {"page-load-loop-steady": abuse_page_load_loop_steady}
 
-ABUSERS = {"page-loop": abuse_page_loop, "invented-ids": abuse_invented_ids,
-           "pull-doc": abuse_pull_doc, "methods-16x": abuse_methods_16x, "nan": abuse_nan,
-           **PRELUDE}
+ABUSERS = {"page-loop": abuse_page_loop, "page-load-loop": abuse_page_load_loop,
+           "invented-ids": abuse_invented_ids, "pull-doc": abuse_pull_doc,
+           "methods-16x": abuse_methods_16x, "nan": abuse_nan, **PRELUDE}
 
 
 def log_lines(log: Path | None) -> tuple[int, int]:

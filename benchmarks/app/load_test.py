@@ -94,6 +94,10 @@ DOCUMENT_READY = {"kind": "MessageSent", "msg_type": "bokeh_event",
                   "msg_data": {"type": "event", "name": "document_ready",
                                "values": {"type": "map"}}}
 TOKEN = re.compile(r'\\?"token\\?":\s*\\?"([^"\\]+)')
+#: Texts of the notes a client past its page builds gets, and one whose page could not
+#: be served (`app.page.guard.refusal_note`, `failure_note`).
+REFUSED = "Too many pages were opened from your network"
+FAILED = "This page could not be shown"
 PSI_LABEL = re.compile(r"^\s*ψ(\s|=|$)")
 
 
@@ -217,7 +221,8 @@ class Session:
         #: the PATCH-DOC contents received, while a list (None: not kept)
         self.patches: list[str] | None = None
 
-    async def open(self) -> None:
+    async def open(self, targets: bool = True) -> None:
+        """Load the page as a browser does: its HTML, then `load`."""
         r = await self.http.fetch(self.url, request_timeout=60, follow_redirects=True)
         for value in r.headers.get_list("Set-Cookie"):
             for k, morsel in SimpleCookie(value).items():
@@ -225,15 +230,39 @@ class Session:
         m = TOKEN.search(r.body.decode())
         if not m:
             raise LookupError("no session token in the page")
-        content = await self.pull(m.group(1))
-        self.doc = json.loads(content)
-        self.slider, self.force, self.start, self.end = find_targets(self.doc,
-                                                                      self.slider_name)
-        self.force_ref = f'"model":{{"id":"{self.force}"}}'
-        self.value = None
-        # what BokehJS sends once it has rendered the document: Panel counts the session
-        # as loaded from then on (and runs its on-load callbacks)
+        await self.load(m.group(1), targets)
+
+    async def load(self, token: str, targets: bool = True) -> None:
+        """Do what BokehJS does with the page's session `token`: pull the document (the
+        page's shell, a column), send ``document_ready`` once it is shown (Panel then
+        runs the session's on-load callbacks, which build the explorer into the shell:
+        `app.page.guard.serve_page`), and wait for what fills the shell.  With
+        `targets`, find the ψ slider and the plots' source in it: LookupError if they
+        are not there (naming the server's refusal or failure note if that came)."""
+        content = await self.pull(token)
+        pulled = json.loads(content)
+        shells = [r["id"] for r in pulled["doc"]["roots"] if r.get("name", "").endswith("Column")]
         await self._send("PATCH-DOC", {"events": [DOCUMENT_READY]})
+        self.doc = {"pulled": pulled, "filled": []}
+        while True:
+            header, content = await asyncio.wait_for(self._read(), 120)
+            if header.get("msgtype") != "PATCH-DOC":
+                continue
+            patch = json.loads(content)
+            self.doc["filled"].append(patch)
+            if any(e.get("attr") == "children" and e.get("model", {}).get("id") in shells
+                   for e in patch.get("events", [])):
+                break
+        if targets:
+            try:
+                self.slider, self.force, self.start, self.end = find_targets(
+                    self.doc, self.slider_name)
+            except LookupError as err:
+                text = json.dumps(self.doc["filled"])
+                notes = [n for n in (REFUSED, FAILED) if n in text]
+                raise LookupError(f"no explorer: {notes[0] if notes else err}") from None
+            self.force_ref = f'"model":{{"id":"{self.force}"}}'
+        self.value = None
         self.alive = True
         self._reader = asyncio.create_task(self._read_loop())
 

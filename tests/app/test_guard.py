@@ -18,7 +18,7 @@ import pytest
 from bokeh.document import Document
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from test_sessions import served  # noqa: F401 (the fixture)
+from test_sessions import new_session, served, visit  # noqa: F401 (served: the fixture)
 
 import app.page.guard
 from app.contact.state import QUERY_KEYS, parse_query
@@ -78,7 +78,7 @@ def test_the_links_that_blanked_the_page_build_one(link: str) -> None:
     for part in link.split("&"):
         key, _, value = part.partition("=")
         query.setdefault(key, []).append(value)
-    explorer, page = build_page(session_args(query), None)
+    explorer, page = build_page(session_args(query))
     assert_page(explorer, page)
 
 
@@ -86,19 +86,19 @@ def test_the_links_that_blanked_the_page_build_one(link: str) -> None:
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(QUERIES)
 def test_any_query_builds_a_page(query: dict[str, list[str]]) -> None:
-    explorer, page = build_page(session_args(query), None)
+    explorer, page = build_page(session_args(query))
     assert_page(explorer, page)
 
 
 def test_a_failed_build_shows_the_defaults_and_says_why() -> None:
-    explorer, page = build_page({"motor_N": [b"5e-324"]}, None)
+    explorer, page = build_page({"motor_N": [b"5e-324"]})
     assert_page(explorer, page)
     assert explorer.message.visible
     assert "motor_N" in explorer.message.object or "N" in explorer.message.object
 
 
 def test_messages_quote_a_long_value_in_part() -> None:
-    explorer, _ = build_page({"x": [b"1" * 5000]}, None)
+    explorer, _ = build_page({"x": [b"1" * 5000]})
     assert explorer.message.visible
     assert len(explorer.message.object) < 600
     assert len(quoted("1" * 5000)) <= 130
@@ -132,21 +132,21 @@ def test_a_value_no_browser_sends_is_refused_once(slider: str, value: float) -> 
 @pytest.mark.parametrize("link", ["?tau0=1.57079632679", "??psi=1",
                                   "?x=" + "1" * 5000, "?motor_N=5e-324", "?view=present"])
 def test_served_links_build_the_explorer(served, link: str, caplog) -> None:  # noqa: F811
-    """Over HTTP: the page's session holds the explorer's document (before, the page
-    build raised and the session's document was empty), and nothing raised while the
-    page was made servable (the presentation view leaves sliders off the page)."""
+    """Over HTTP and the websocket, as a browser loads the page: the explorer is built
+    into the page (before, the page build raised and the session's document was empty),
+    and nothing raised while it was (the presentation view leaves sliders off the page)."""
     url, server = served
     before = {s.id for s in server.get_sessions("/main")}
-    with caplog.at_level(logging.ERROR), urllib.request.urlopen(url + link) as r:
-        assert r.status == 200
+    full = "view=present" not in link  # (the presentation: no T(τ) plot)
+    with caplog.at_level(logging.ERROR):
+        visit(url + link, targets=full)  # (LookupError unless the ψ slider and plots came)
     assert not [rec for rec in caplog.records if rec.levelno >= logging.ERROR], \
         [rec.getMessage() for rec in caplog.records]
-    new = [s for s in server.get_sessions("/main") if s.id not in before]
-    assert len(new) == 1
-    doc = new[0].document
+    doc = new_session(server, before).document
     names = {m.name for m in doc.roots}
     assert "location" in names
-    assert len(doc.roots) >= 2, names
+    assert doc.select_one({"name": "force"}) is not None or not full, names
+    assert len(doc.models) > 100  # (the shell alone: ~10)
 
 
 class Clock:
@@ -183,17 +183,19 @@ def test_the_limit_forgets_idle_clients_and_stays_bounded() -> None:
 
 
 def test_a_client_past_its_page_builds_gets_the_short_page(served, monkeypatch) -> None:  # noqa: F811
+    from load_test import REFUSED
+
     url, server = served
     monkeypatch.setattr(app.page.guard, "BUILDS", BuildLimit(burst=2, rate=1e-6))
-    texts = []
-    for _ in range(3):
-        before = {s.id for s in server.get_sessions("/main")}
-        with urllib.request.urlopen(url) as r:
-            assert r.status == 200
-        (new,) = [s for s in server.get_sessions("/main") if s.id not in before]
-        texts.append(" ".join(str(getattr(m, "text", "")) for m in new.document.models))
-    assert "Too many pages" not in texts[0] and "Too many pages" not in texts[1]
-    assert "Too many pages were opened from your network" in texts[2]
+    visit(url)
+    visit(url)
+    before = {s.id for s in server.get_sessions("/main")}
+    with pytest.raises(LookupError, match=REFUSED):
+        visit(url)
+    texts = " ".join(str(getattr(m, "text", "")) for m in new_session(server, before)
+                     .document.models)
+    assert "Too many pages were opened from your network" in texts
+    assert "Please reload this page in" in texts
 
 
 def test_behind_a_proxy_the_client_is_the_last_forwarded_hop() -> None:
@@ -208,9 +210,9 @@ def test_behind_a_proxy_the_client_is_the_last_forwarded_hop() -> None:
 
 
 def test_a_page_build_does_not_hold_up_the_server(served, monkeypatch) -> None:  # noqa: F811
-    """While one page is being built (held here until the server has answered), the
-    server answers other requests: builds run on a worker thread, not on the event loop
-    that serves the open sessions (`app.serve.applications`)."""
+    """While one page's explorer is being built (held here until the server has
+    answered), the server answers other requests: builds run on a worker thread, not on
+    the event loop that serves the open sessions (`app.page.guard.serve_page`)."""
     import threading
 
     url, _ = served
@@ -218,14 +220,14 @@ def test_a_page_build_does_not_hold_up_the_server(served, monkeypatch) -> None: 
     threads = []
     build = app.page.guard.build_page
 
-    def held_build(query, location):
+    def held_build(query):
         threads.append(threading.current_thread())
         building.set()
         assert release.wait(30), "the test never released the build"
-        return build(query, location)
+        return build(query)
 
     monkeypatch.setattr(app.page.guard, "build_page", held_build)
-    page = threading.Thread(target=lambda: urllib.request.urlopen(url, timeout=60).read())
+    page = threading.Thread(target=visit, args=(url,))
     page.start()
     try:
         assert building.wait(30), "no page build started"
@@ -239,44 +241,22 @@ def test_a_page_build_does_not_hold_up_the_server(served, monkeypatch) -> None: 
     assert threads[0].name.startswith("asyncio")  # the event loop's worker threads
 
 
-def test_a_page_whose_client_has_gone_is_not_built(served, monkeypatch) -> None:  # noqa: F811
-    """A page load whose client hangs up before its build starts (the build waited for a
-    worker, here held until the client has gone) builds nothing: no explorer for no one."""
-    import socket
-    import threading
-    import time
-    from urllib.parse import urlsplit
-
-    url, _ = served
-    asked, hung_up = threading.Event(), threading.Event()
-    seen, built = [], []
-    check, build = app.page.guard.gone, app.page.guard.build_page
-
-    def late_check(request):  # the build's turn comes once the client has hung up
-        asked.set()
-        assert hung_up.wait(30), "the test never hung up"
-        deadline = time.monotonic() + 10  # (the server sees the close on its loop)
-        while not check(request) and time.monotonic() < deadline:
-            time.sleep(0.02)
-        seen.append(check(request))
-        return seen[-1]
-
-    monkeypatch.setattr(app.page.guard, "gone", late_check)
-    monkeypatch.setattr(app.page.guard, "build_page",
-                        lambda q, loc: built.append(q) or build(q, loc))
-    parts = urlsplit(url)
-    client = socket.create_connection((parts.hostname, parts.port), timeout=10)
-    client.sendall(f"GET {parts.path} HTTP/1.1\r\nHost: {parts.netloc}\r\n\r\n".encode())
-    assert asked.wait(30), "no page build started"
-    client.close()
-    hung_up.set()
-    deadline = time.monotonic() + 30
-    while not seen and time.monotonic() < deadline:
-        time.sleep(0.05)
-    assert seen == [True] and built == []
-    monkeypatch.setattr(app.page.guard, "gone", check)  # and a client that stays is served
-    with urllib.request.urlopen(url, timeout=60) as r:
-        assert r.status == 200
+def test_a_page_whose_websocket_never_opens_builds_nothing(served, monkeypatch) -> None:  # noqa: F811
+    """A page load whose browser never opens its websocket (a link preview, a crawler,
+    a script fetching the page in a loop) builds no explorer: its HTML holds the page's
+    shell only.  A browser's load builds one."""
+    url, server = served
+    built = []
+    build = app.page.guard.build_page
+    monkeypatch.setattr(app.page.guard, "build_page", lambda q: built.append(q) or build(q))
+    for _ in range(3):
+        before = {s.id for s in server.get_sessions("/main")}
+        with urllib.request.urlopen(url, timeout=60) as r:
+            assert r.status == 200
+        doc = new_session(server, before).document
+        assert doc.select_one({"name": "force"}) is None
+    assert built == []
+    visit(url)
     assert len(built) == 1
 
 
@@ -303,20 +283,22 @@ def test_a_sessions_pulls_have_their_burst_then_their_rate() -> None:
 
 def test_a_page_that_cannot_be_served_shows_no_traceback(served, monkeypatch, caplog,  # noqa: F811
                                                           capsys) -> None:
-    """Whatever raises while the page is made servable, the visitor gets a short page
-    and the server one log line: Panel would print the traceback and show it on the
-    page (it catches what a function application raises)."""
+    """Whatever raises while the explorer is put into the page, the visitor gets a short
+    note and the server one log line: Panel would print the traceback and show it on
+    the page (it catches what an on-load callback raises)."""
+    from load_test import FAILED
+
     url, server = served
 
-    def broken(self, page=None):
+    def broken(self, shell, page=None):
         raise LookupError("a part of the page was not found")
 
-    monkeypatch.setattr(Explorer, "servable", broken)
+    monkeypatch.setattr(Explorer, "attach", broken)
     before = {s.id for s in server.get_sessions("/main")}
     with caplog.at_level(logging.INFO, logger="app.page.guard"), \
-            urllib.request.urlopen(url) as r:
-        assert r.status == 200
-    [session] = [s for s in server.get_sessions("/main") if s.id not in before]
+            pytest.raises(LookupError, match=FAILED):
+        visit(url)
+    session = new_session(server, before)
     texts = [getattr(m, "text", "") or "" for m in session.document.models]
     assert any("could not be shown" in t for t in texts), texts
     assert not any("Traceback" in t or "LookupError" in t for t in texts)
@@ -324,3 +306,24 @@ def test_a_page_that_cannot_be_served_shows_no_traceback(served, monkeypatch, ca
     lines = [rec for rec in caplog.records if rec.name == "app.page.guard"]
     assert len(lines) == 1 and lines[0].exc_info is None
     assert "LookupError: 'a part of the page was not found'" in lines[0].getMessage()
+
+
+def test_a_page_whose_shell_cannot_be_served_shows_no_traceback(served, monkeypatch,  # noqa: F811
+                                                                caplog) -> None:
+    """The same when the page's shell itself cannot be made: the page's HTML then holds
+    the short note, and the server logs one line."""
+    url, server = served
+
+    def broken(location):
+        raise LookupError("no shell")
+
+    monkeypatch.setattr(app.page.guard, "serve_shell", broken)
+    before = {s.id for s in server.get_sessions("/main")}
+    with caplog.at_level(logging.INFO, logger="app.page.guard"), \
+            urllib.request.urlopen(url) as r:
+        assert r.status == 200
+    texts = [getattr(m, "text", "") or "" for m in new_session(server, before).document.models]
+    assert any("could not be shown" in t for t in texts), texts
+    lines = [rec for rec in caplog.records if rec.name == "app.page.guard"]
+    assert len(lines) == 1 and lines[0].exc_info is None
+    assert "LookupError: 'no shell'" in lines[0].getMessage()

@@ -20,7 +20,6 @@ import pytest
 from bokeh.document import Document
 from explorer_browser import free_port
 from panel.io.server import get_server
-from test_security import _connect, _server_info
 from tornado.httpclient import AsyncHTTPClient
 from tornado.ioloop import IOLoop
 
@@ -30,6 +29,7 @@ from app.page.explorer import Explorer
 from app.serve import applications, parse_args, server_options
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "benchmarks" / "app"))  # (its load_test.Session: a browser's load)
 
 LIFETIME_MS = 1500  # unused sessions are discarded after this (app/serve.py: 20 s)
 SECRET_KEY = b"a-test-key-of-at-least-thirty-two-characters"  # signs the session ids
@@ -88,14 +88,28 @@ def _load(url: str) -> None:
         assert r.status == 200
 
 
-def _load_and_connect(url: str) -> str:
-    async def go() -> str:
-        conn = await _connect(url)
-        reply = await _server_info(conn)
-        conn.close()
-        return reply
+def visit(url: str, targets: bool = True) -> None:
+    """Load the page at `url` as a browser does (benchmarks/app/load_test.py's client:
+    the HTML, the websocket, the document, ``document_ready``, what is built into the
+    page) and close it.  With `targets`, LookupError unless the explorer's ψ slider and
+    plots came (naming the server's refusal or failure note if that came instead)."""
+    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
+    from load_test import Session
 
-    return asyncio.run(go())
+    async def go() -> None:
+        session = Session(url, AsyncHTTPClient(), 10.0, None)
+        try:
+            await session.open(targets)
+        finally:
+            session.close()
+
+    asyncio.run(go())
+
+
+def new_session(server, before: set[str]):
+    """The one session of `server` whose id is not in `before`."""
+    (session,) = [s for s in server.get_sessions("/main") if s.id not in before]
+    return session
 
 
 KINDS = (Explorer, ExplorerState, MethodsScene, Document)
@@ -112,7 +126,7 @@ def test_sessions_leave_nothing_behind(served) -> None:
     for _ in range(6):
         _load(url)  # a link preview: the websocket never connects
     for _ in range(4):
-        assert _load_and_connect(url) == "SERVER-INFO-REPLY"  # a visit
+        visit(url)  # a visit: the explorer is built, then the tab closes
     assert len(server.get_sessions("/main")) >= 1
     _wait_for_no_sessions(server)
     after = {k: _alive(k, but=elsewhere) for k in KINDS}
@@ -215,27 +229,30 @@ def test_a_slider_move_sends_its_url_in_its_one_message(served) -> None:
 
 
 def test_a_session_built_for_its_websocket_alone_has_the_servers_stylesheets(served) -> None:
-    """With `--num-procs` above 1 (the image's default) a page's websocket may reach a
-    process that did not serve the page; that process builds the session's document for
-    the websocket alone, without rendering the page.  Its stylesheets must still be the
-    server's own copies: Panel's CDN is refused by the page's Content-Security-Policy
-    (the page showed unstyled, 233 refusals in the console) and out of reach offline."""
+    """With `--num-procs` above 1 a page's websocket may reach a process that did not
+    serve the page; that process builds the session's document for the websocket alone,
+    without rendering the page.  Its stylesheets, the shell's and the explorer's built
+    into it, must still be the server's own copies: Panel's CDN is refused by the page's
+    Content-Security-Policy (the page showed unstyled, 233 refusals in the console) and
+    out of reach offline."""
     url, _ = served
     sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
     from bokeh.util.token import generate_jwt_token, generate_session_id
     from load_test import Session
 
-    async def pull() -> str:
+    async def load() -> str:
         session = Session(url, AsyncHTTPClient(), 10.0, None)
         try:  # a session no page was made for (its id signed with the server's key)
-            return await session.pull(generate_jwt_token(
+            await session.load(generate_jwt_token(
                 generate_session_id(SECRET_KEY, signed=True), SECRET_KEY, signed=True))
+            return json.dumps(session.doc)
         finally:
             session.close()
 
-    doc = asyncio.run(pull())
+    doc = asyncio.run(load())
     assert "cdn.holoviz.org" not in doc
     assert "static/extensions/panel/css/listpanel.css" in doc
+    assert "static/extensions/panel/css/button.css" in doc  # (the explorer's buttons)
 
 
 @pytest.mark.parametrize("signed_with", [None, b"another-key-of-at-least-thirty-two-chars"])
