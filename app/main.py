@@ -5,6 +5,6 @@ import panel as pn
 
 from app.page.guard import serve_page
 
-pn.extension("katex", notifications=False)
+pn.extension("katex", notifications=False, lazy_resources=False)
 
 serve_page()

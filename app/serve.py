@@ -22,6 +22,9 @@ A `panel serve app/main.py` with the settings a deployment needs fixed in one pl
   (a link preview, a crawler) is discarded after 20 s; connections are pinged every
   10 s so that proxies keep idle classroom sessions open; one that answers no ping for
   10 s (e.g. a client stopped half-way through a frame) is closed.
+- **Page loads per client address** (`app.page.gate`): 120 at once, then one a
+  second; past them a client is sent, before any session is made, to a short 429 page
+  (``/main/busy``) that opens its link again when it may.
 - **Signed session ids** (``BOKEH_SECRET_KEY``, else a key drawn at start): a websocket
   or a page request naming a session id this server did not issue is refused, so no
   client can have documents built without loading a page.
@@ -227,12 +230,15 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
 
 def server_options(args: argparse.Namespace) -> dict:
     """Keyword arguments of `panel.io.server.get_server` for `args`."""
+    from app.page.gate import BUSY_PATH, BusyPage
+
     opts = dict(
         port=args.port, address=args.address, num_procs=args.num_procs,
         websocket_origin=args.allow_websocket_origin, prefix=args.prefix,
         liveness=True, index=None, admin=args.admin,
         use_xheaders=args.behind_proxy,
         transforms=[NoAutoload, SecurityHeaders, GZipContentEncoding],
+        extra_patterns=[(BUSY_PATH, BusyPage, {"prefix": args.prefix})],
         **SESSION,
     )
     if args.basic_auth:
@@ -253,9 +259,11 @@ def applications() -> dict:
     patched)."""
     import panel as pn
 
+    from app.page import gate
     from app.page.guard import serve_page
 
-    pn.extension("katex", notifications=False)
+    pn.extension("katex", notifications=False, lazy_resources=False,
+                 authorize_callback=gate.authorize)  # (page loads per address)
     return {"main": serve_page}
 
 

@@ -9,7 +9,7 @@ nothing.
 `build_page` builds one session's explorer from the page's URL and, if anything raises
 while reading the URL or building a scene, builds the default explorer instead with a
 message saying why; the server logs one line (no traceback per request).  `fill`
-refuses, cheaply, a client that has had too many pages built (`BuildLimit`).
+refuses, cheaply, a client that has had too many pages built (`BUILDS`).
 
 The URL is read through `SafeLocation`, Panel's `Location` whose query parser takes any
 text: Panel's own fails on some links that a browser sends as they are (a doubled
@@ -21,9 +21,7 @@ from __future__ import annotations
 import logging
 import math
 import reprlib
-import threading
-import time
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from functools import partial
 from typing import Any
 
@@ -31,7 +29,8 @@ import panel as pn
 from panel.io.location import Location
 from panel.io.resources import get_dist_path
 
-from app.page import bucket, layout
+from app.page import layout
+from app.page.bucket import AddressLimit
 from app.page.explorer import Explorer
 from app.page.memory import SessionMemory
 from app.page.pulls import PullGuard
@@ -89,51 +88,13 @@ def build_page(query: Mapping[str, Any]) -> tuple[Explorer, pn.Column]:
         return explorer, explorer.view()
 
 
-class BuildLimit:
-    """How many pages one client address may have built: a token bucket of `burst`
-    builds, refilled at `rate` per second.
-
-    A page build takes ~0.4 s of CPU on a worker thread (`serve_page`), which the
-    sessions already open share the interpreter with: a client loading pages in a loop
-    would slow every lecture on its process.  Past its bucket a client gets
-    `refusal_note` in its page instead of the explorer, which costs a few ms.  `burst`
-    is sized for a class behind one address (a school's NAT) opening the page at once;
-    `rate` for that class reloading
-    now and then.  Idle clients' buckets are forgotten (at most `clients` are kept).
-    """
-
-    def __init__(self, burst: float = 40.0, rate: float = 0.25, clients: int = 10_000,
-                 clock: Callable[[], float] = time.monotonic) -> None:
-        self.burst, self.rate, self.clients, self._clock = burst, rate, clients, clock
-        self._buckets: dict[str, tuple[float, float]] = {}  # address -> (tokens, when)
-        self._lock = threading.Lock()
-
-    def allow(self, client: str) -> bool:
-        """Take one build from `client`'s bucket; False (nothing taken) when it is empty."""
-        now = self._clock()
-        with self._lock:
-            tokens, when = self._buckets.get(client, (self.burst, now))
-            if len(self._buckets) >= self.clients and client not in self._buckets:
-                self._forget_full(now)
-            tokens, taken = bucket.take(tokens, now - when, self.burst, self.rate)
-            self._buckets[client] = (tokens, now)
-            return taken
-
-    def retry_after(self, client: str) -> float:
-        """Seconds until `client` may have a page built again."""
-        with self._lock:
-            tokens, when = self._buckets.get(client, (self.burst, self._clock()))
-        return max(0.0, (1.0 - tokens) / self.rate - (self._clock() - when))
-
-    def _forget_full(self, now: float) -> None:
-        full = [c for c, (tokens, when) in self._buckets.items()
-                if tokens + (now - when) * self.rate >= self.burst]
-        for c in full or list(self._buckets)[: len(self._buckets) // 2]:
-            del self._buckets[c]
-
-
-#: The page builds of this server process, per client address.
-BUILDS = BuildLimit()
+#: The page builds of this server process, per client address: a build takes ~0.4 s of
+#: CPU on a worker thread (`serve_page`), which the sessions already open share the
+#: interpreter with, so a client loading pages in a loop would slow every lecture on
+#: its process; past its bucket a client gets `refusal_note` in its page instead of the
+#: explorer, which costs a few ms.  40 at once: a class behind one address (a school's
+#: NAT) opening the page; then one every 4 s: that class reloading now and then.
+BUILDS = AddressLimit(burst=40.0, rate=0.25)
 
 #: The open sessions of this server process, kept out of the garbage collector's walks.
 MEMORY = SessionMemory()

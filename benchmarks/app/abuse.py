@@ -102,10 +102,11 @@ async def paced(stop: asyncio.Event, rate: float):
 async def abuse_page_loop(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
                           counts: dict) -> None:
     """GET the page in a loop, each as soon as the previous one is answered, never
-    opening its websocket (a crawler, a script)."""
+    opening its websocket (a crawler, a script); past the address's page loads
+    (`app.page.gate`) the redirect to the busy page is followed."""
     while not stop.is_set():
         r = await http.fetch(url, request_timeout=60, raise_error=False)
-        key = "pages" if r.code == 200 else f"HTTP {r.code}"
+        key = {200: "pages", 429: "refused"}.get(r.code, f"HTTP {r.code}")
         counts[key] = counts.get(key, 0) + 1
 
 
@@ -121,7 +122,8 @@ async def abuse_page_load_loop(url: str, http: AsyncHTTPClient, stop: asyncio.Ev
             await asyncio.wait_for(s.open(), 120)
             key = "built"
         except LookupError as err:
-            key = "refused" if REFUSED in str(err) else "no explorer"
+            key = ("refused" if REFUSED in str(err) else "refused (429)" if "429" in str(err)
+                   else "no explorer")
         except (TimeoutError, ConnectionError, WebSocketClosedError, OSError):
             key = "failed"
         finally:

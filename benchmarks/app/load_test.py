@@ -223,7 +223,12 @@ class Session:
 
     async def open(self, targets: bool = True) -> None:
         """Load the page as a browser does: its HTML, then `load`."""
-        r = await self.http.fetch(self.url, request_timeout=60, follow_redirects=True)
+        r = await self.http.fetch(self.url, request_timeout=60, follow_redirects=True,
+                                  raise_error=False)
+        if r.code == 429:  # (past the address's page loads: `app.page.gate`)
+            raise LookupError(f"no explorer: page load refused (HTTP 429, {r.effective_url})")
+        if r.code != 200:
+            raise ConnectionError(f"page load answered HTTP {r.code}")
         for value in r.headers.get_list("Set-Cookie"):
             for k, morsel in SimpleCookie(value).items():
                 self.cookies[k] = morsel.value

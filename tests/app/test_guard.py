@@ -24,8 +24,9 @@ import app.page.guard
 from app.contact.state import QUERY_KEYS, parse_query
 from app.motor import QUERY_KEYS as MOTOR_KEYS
 from app.motor import MotorScene
+from app.page.bucket import AddressLimit
 from app.page.explorer import Explorer
-from app.page.guard import BuildLimit, SafeLocation, build_page, quoted
+from app.page.guard import SafeLocation, build_page, quoted
 
 #: The links of issue 22 that answered an empty page, and their neighbours.
 BAD_LINKS = [
@@ -159,7 +160,7 @@ class Clock:
 
 def test_a_client_has_its_burst_then_its_rate_and_others_are_unaffected() -> None:
     clock = Clock()
-    limit = BuildLimit(burst=3, rate=0.5, clock=clock)
+    limit = AddressLimit(burst=3, rate=0.5, clock=clock)
     assert [limit.allow("a") for _ in range(4)] == [True, True, True, False]
     assert limit.allow("b")  # another address has its own bucket
     assert limit.retry_after("a") == pytest.approx(2.0)
@@ -173,7 +174,7 @@ def test_a_client_has_its_burst_then_its_rate_and_others_are_unaffected() -> Non
 
 def test_the_limit_forgets_idle_clients_and_stays_bounded() -> None:
     clock = Clock()
-    limit = BuildLimit(burst=2, rate=1.0, clients=10, clock=clock)
+    limit = AddressLimit(burst=2, rate=1.0, clients=10, clock=clock)
     for i in range(10):
         limit.allow(f"c{i}")
     clock.now = 5.0  # every bucket full again: forgettable
@@ -186,7 +187,7 @@ def test_a_client_past_its_page_builds_gets_the_short_page(served, monkeypatch) 
     from load_test import REFUSED
 
     url, server = served
-    monkeypatch.setattr(app.page.guard, "BUILDS", BuildLimit(burst=2, rate=1e-6))
+    monkeypatch.setattr(app.page.guard, "BUILDS", AddressLimit(burst=2, rate=1e-6))
     visit(url)
     visit(url)
     before = {s.id for s in server.get_sessions("/main")}
@@ -327,3 +328,43 @@ def test_a_page_whose_shell_cannot_be_served_shows_no_traceback(served, monkeypa
     lines = [rec for rec in caplog.records if rec.name == "app.page.guard"]
     assert len(lines) == 1 and lines[0].exc_info is None
     assert "LookupError: 'no shell'" in lines[0].getMessage()
+
+
+def test_past_its_page_loads_a_client_gets_the_busy_page_and_no_session(served,  # noqa: F811
+                                                                          monkeypatch) -> None:
+    """A script fetching the page in a loop: past its address's page loads
+    (`app.page.gate.PAGES`) the request is redirected, before any session is made, to
+    the busy page (429, Retry-After), which opens the same link again when it may."""
+    import urllib.error
+
+    import app.page.gate
+
+    url, server = served
+    monkeypatch.setattr(app.page.gate, "PAGES", AddressLimit(burst=2, rate=0.01))
+    link = url + "?psi=2&tau0=0.4"
+    for _ in range(2):
+        with urllib.request.urlopen(link, timeout=60) as r:
+            assert r.status == 200
+    before = {s.id for s in server.get_sessions("/main")}
+    with pytest.raises(urllib.error.HTTPError) as refused:
+        urllib.request.urlopen(link, timeout=60)
+    assert refused.value.code == 429
+    assert refused.value.url.split("?")[0] == url + "/busy"
+    after = int(refused.value.headers["Retry-After"])
+    assert 60 <= after <= 100  # (a load every 100 s)
+    body = refused.value.read().decode()
+    assert "Too many pages were opened from your network" in body
+    assert f"content='{after}; url=/main?psi=2&amp;tau0=0.4'" in body  # (the visitor's link)
+    assert {s.id for s in server.get_sessions("/main")} == before
+
+
+@pytest.mark.parametrize("uri, expected", [
+    ("/main?psi=2&tau0=0.4", "/main?psi=2&tau0=0.4"), ("/main/", "/main"),
+    ("/main", "/main"), ("https://elsewhere.example/main", "/main"),
+    ("//elsewhere.example/main", "/main"), ("/admin", "/main"), ("/main/ws", "/main"),
+    ("javascript:alert(1)", "/main"), ("", "/main")])
+def test_the_busy_page_sends_only_to_the_explorer(uri: str, expected: str) -> None:
+    from app.page.gate import link
+
+    assert link(uri) == expected
+    assert link(uri.replace("/main", "/x/main", 1), "/x") == expected.replace("/main", "/x/main")
