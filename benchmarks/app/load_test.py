@@ -249,7 +249,12 @@ class Session:
         shells = [r["id"] for r in pulled["doc"]["roots"] if r.get("name", "").endswith("Column")]
         await self._send("PATCH-DOC", {"events": [DOCUMENT_READY]})
         self.doc = {"pulled": pulled, "filled": []}
-        while True:
+        try:  # a server that builds the explorer for the page's HTML (before 54858cc)
+            find_targets(pulled, self.slider_name)
+            shells = []
+        except LookupError:
+            pass
+        while shells:
             header, content = await asyncio.wait_for(self._read(), 120)
             if header.get("msgtype") != "PATCH-DOC":
                 continue

@@ -1,22 +1,29 @@
-"""What a page load costs the explorer server: sequential GETs of /main on an idle server.
+"""What a page load costs the explorer server: sequential page loads on an idle server.
 
 Starts ``python -m app.serve`` (one process) on a free loopback port, waits until it is
 idle, loads the page once (the first load of a process imports and compiles what the
-app needs: reported apart), then times ``--loads`` (20) sequential GETs of ``/main``,
-each from the request sent to the last byte of the page received: the server creating
-the session, building its document and rendering the page.  Reported: median, min,
+app needs: reported apart), then times ``--loads`` (20) sequential page loads of
+``/main`` as a browser loads it (`load`), each from the request sent to the explorer
+received: the server creating the session and its page's shell, rendering the page's
+HTML, answering the websocket's pull, building the explorer into the page once the
+client says the page is shown, and sending it.  Reported: median, min,
 p90 and max in ms, the server process's CPU time per load, and the median as a multiple
 of one closed-form contact (``core.numerics.metrics.closed_form_time(Contact, 0.4,
 pi/6)``, the machine yardstick of benchmarks/app/app_latency.py, measured before and after
 the run).  Target: median <= 0.5 s.
 
 ``--profile FILE`` then records the server with py-spy (``.venv/bin/py-spy``) during
-another ``--loads`` GETs (collapsed stacks in FILE) and prints where the time goes:
+another ``--loads`` page loads (collapsed stacks in FILE) and prints where the time goes:
 the functions of app/, Panel, Bokeh and param holding the most samples (inclusive) and
 the most samples on their own (self).  The timing run is not profiled.
 
     .venv/bin/python benchmarks/app/page_load.py
     .venv/bin/python benchmarks/app/page_load.py --loads 20 --profile /tmp/page.txt --json out.json
+    .venv/bin/python benchmarks/app/page_load.py --revs 6269e5a HEAD --loads 15
+
+``--revs A B`` serves two git revisions side by side and alternates their loads (the
+CPU of each counted over the load and the 0.5 s after it, where a session's first
+messages are answered).
 
 ``--gc PAGES`` instead builds PAGES sessions' pages in this process, keeping them as
 the server keeps its sessions, and prints the models of each page's document, the time
@@ -33,6 +40,7 @@ Loopback only; every request has a timeout.
 from __future__ import annotations
 
 import argparse
+import asyncio
 import json
 import os
 import re
@@ -44,7 +52,6 @@ import sys
 import time
 from collections import Counter
 from pathlib import Path
-from urllib.request import urlopen
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path[:0] = [str(ROOT), str(ROOT / "benchmarks" / "app")]
@@ -62,14 +69,24 @@ OURS = re.compile(r"\((?:/[^()]*/)?(app|core|panel|bokeh|param)/")
 LINE = re.compile(r":\d+\)$")
 
 
-def get(url: str) -> float:
-    """Seconds from sending GET `url` to having read the whole response."""
-    t0 = time.perf_counter()
-    with urlopen(url, timeout=60) as r:
-        r.read()
-        if r.status != 200:
-            raise RuntimeError(f"GET {url}: HTTP {r.status}")
-    return time.perf_counter() - t0
+def load(url: str) -> float:
+    """Seconds from sending GET `url` to having the explorer, loaded as a browser loads
+    it (`load_test.Session.open`: the page's HTML, its websocket, the document (the
+    page's shell), ``document_ready``, and the explorer built into the page, received).
+    The browser's own work (scripts, rendering) is not in it."""
+    from load_test import Session
+    from tornado.httpclient import AsyncHTTPClient
+
+    async def go() -> float:
+        session = Session(url, AsyncHTTPClient(), 10.0, None)
+        t0 = time.perf_counter()
+        try:
+            await session.open()
+            return time.perf_counter() - t0
+        finally:
+            session.close()
+
+    return asyncio.run(go())
 
 
 def cpu_s(pid: int) -> float:
@@ -81,15 +98,50 @@ def cpu_s(pid: int) -> float:
 
 
 def timed_loads(url: str, pid: int, loads: int) -> dict:
-    """`loads` sequential GETs of `url`: their times, and the server's CPU time per load."""
+    """`loads` sequential page loads of `url`: their times, and the server's CPU time
+    per load."""
     c0 = cpu_s(pid)
-    times = [get(url) for _ in range(loads)]
+    times = [load(url) for _ in range(loads)]
     cpu = (cpu_s(pid) - c0) / loads
     ms = sorted(1e3 * t for t in times)
     return {"loads": loads, "ms": [round(x, 1) for x in ms],
             "median_ms": round(statistics.median(ms), 1), "min_ms": round(ms[0], 1),
             "p90_ms": round(ms[int(0.9 * (len(ms) - 1))], 1), "max_ms": round(ms[-1], 1),
             "server_cpu_ms_per_load": round(1e3 * cpu, 1)}
+
+
+def paired(revs: list[str], loads: int, idle: float) -> dict:
+    """Revisions `revs` served side by side (a worktree each), their loads alternated:
+    per revision, the loads' times and the server's CPU per load, as `timed_loads`."""
+    import contextlib
+
+    from app_latency import worktree
+    from explorer_browser import explorer_server
+    from move_cost import server_pid
+
+    with contextlib.ExitStack() as stack:
+        urls = {rev: stack.enter_context(explorer_server(stack.enter_context(worktree(rev)),
+                                                         timeout=900)) for rev in revs}
+        pids = {rev: server_pid(url) for rev, url in urls.items()}
+        time.sleep(idle)
+        for url in urls.values():
+            load(url)  # (the first load of a process, apart)
+        time.sleep(idle)
+        times: dict[str, list[float]] = {rev: [] for rev in revs}
+        cpu = dict.fromkeys(revs, 0.0)
+        for _ in range(loads):
+            for rev, url in urls.items():
+                c0 = cpu_s(pids[rev])
+                times[rev].append(load(url))
+                time.sleep(0.5)  # (what the load leaves to do: the session's first messages)
+                cpu[rev] += cpu_s(pids[rev]) - c0
+    out = {}
+    for rev in revs:
+        ms = sorted(1e3 * t for t in times[rev])
+        out[rev] = {"median_ms": round(statistics.median(ms), 1), "min_ms": round(ms[0], 1),
+                    "p90_ms": round(ms[int(0.9 * (len(ms) - 1))], 1),
+                    "server_cpu_ms_per_load": round(1e3 * cpu[rev] / loads, 1)}
+    return out
 
 
 def py_spy() -> str:
@@ -102,14 +154,15 @@ def py_spy() -> str:
 
 
 def profile(url: str, pid: int, loads: int, out: Path) -> dict:
-    """Record the server with py-spy during `loads` GETs; collapsed stacks go to `out`."""
+    """Record the server with py-spy during `loads` page loads; collapsed stacks go to
+    `out`."""
     rec = subprocess.Popen([py_spy(), "record", "--pid", str(pid), "--rate", "250",
                             "--format", "raw", "--output", str(out), "--nonblocking"],
                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     time.sleep(2.0)  # py-spy attaches
     try:
         for _ in range(loads):
-            get(url)
+            load(url)
     finally:
         rec.send_signal(signal.SIGINT)
         try:
@@ -193,10 +246,10 @@ def gc_pauses(pages: int) -> list[tuple[float, float, int]]:
 def main(argv: list[str] | None = None) -> int:
     """Parse the command line, start the server, time the loads, print the report."""
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--loads", type=int, default=20, help="sequential timed GETs")
+    p.add_argument("--loads", type=int, default=20, help="sequential timed page loads")
     p.add_argument("--idle", type=float, default=3.0,
                    help="seconds to let the server settle before the first load")
-    p.add_argument("--profile", type=Path, help="profile another --loads GETs with py-spy, "
+    p.add_argument("--profile", type=Path, help="profile another --loads loads with py-spy, "
                    "collapsed stacks written here")
     p.add_argument("--json", type=Path, help="write the results here")
     p.add_argument("--validate-doc", action="store_true",
@@ -205,7 +258,21 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--gc", type=int, metavar="PAGES",
                    help="instead: build PAGES pages in this process, keeping each, and "
                         "print each one's build time and full garbage collections")
+    p.add_argument("--revs", nargs=2, metavar=("A", "B"),
+                   help="instead: serve git revisions A and B side by side and alternate "
+                        "their loads (each load, then 0.5 s for what it leaves to do)")
     args = p.parse_args(argv)
+    if args.revs:
+        os.environ["BOKEH_VALIDATE_DOC"] = "true" if args.validate_doc else "false"
+        res = paired(args.revs, args.loads, args.idle)
+        print(f"{args.loads} page loads per revision, alternated; "
+              f"BOKEH_VALIDATE_DOC={os.environ['BOKEH_VALIDATE_DOC']}")
+        for rev, r in res.items():
+            print(f"  {rev}: median {r['median_ms']:.0f} ms (min {r['min_ms']:.0f}, p90 "
+                  f"{r['p90_ms']:.0f}); server CPU {r['server_cpu_ms_per_load']:.0f} ms per load")
+        if args.json:
+            args.json.write_text(json.dumps(res, indent=2) + "\n")
+        return 0
     if args.gc:
         for i, (ms, gc_ms, models) in enumerate(gc_pauses(args.gc), 1):
             print(f"page {i:3d} ({models} models): {ms:5.0f} ms, of which full garbage "
@@ -223,7 +290,7 @@ def main(argv: list[str] | None = None) -> int:
                     f"({url}); {os.cpu_count()} CPUs")
     try:
         time.sleep(args.idle)
-        res["first_load_ms"] = round(1e3 * get(url), 1)
+        res["first_load_ms"] = round(1e3 * load(url), 1)
         time.sleep(args.idle)
         res.update(timed_loads(url, proc.pid, args.loads))
         if args.profile:
@@ -237,7 +304,7 @@ def main(argv: list[str] | None = None) -> int:
     res["met"] = res["median_ms"] <= 1e3 * TARGET_S
     print(f"setup: {res['setup']}")
     print(f"first load of the process: {res['first_load_ms']:.0f} ms")
-    print(f"{res['loads']} sequential loads of /main: median {res['median_ms']:.0f} ms "
+    print(f"{res['loads']} sequential page loads of /main: median {res['median_ms']:.0f} ms "
           f"(min {res['min_ms']:.0f}, p90 {res['p90_ms']:.0f}, max {res['max_ms']:.0f}); "
           f"server CPU {res['server_cpu_ms_per_load']:.0f} ms per load")
     print(f"median = {res['median_in_contacts'][0]}-{res['median_in_contacts'][1]} closed-form "
