@@ -22,9 +22,11 @@ A `panel serve app/main.py` with the settings a deployment needs fixed in one pl
   (a link preview, a crawler) is discarded after 20 s; connections are pinged every
   10 s so that proxies keep idle classroom sessions open; one that answers no ping for
   10 s (e.g. a client stopped half-way through a frame) is closed.
-- **Page loads per client address** (`app.page.gate`): 120 at once, then one a
-  second; past them a client is sent, before any session is made, to a short 429 page
-  (``/main/busy``) that opens its link again when it may.
+- **Page loads and builds per client address** (``--class-size N``, default 40): N
+  pages built at once, then one every 4 s (`app.page.guard.BUILDS`: past them the page
+  shows a note instead of the explorer), and 3N page loads, then one a second
+  (`app.page.gate`: past them a client is sent, before any session is made, to a short
+  429 page, ``/main/busy``, that opens its link again when it may).
 - **Signed session ids** (``BOKEH_SECRET_KEY``, else a key drawn at start): a websocket
   or a page request naming a session id this server did not issue is refused, so no
   client can have documents built without loading a page.
@@ -78,6 +80,9 @@ METHODS_WAIT_S = 4.0
 #: (pure Python, CPU-bound) each hand-off waited up to the whole interval, which
 #: doubled the open sessions' latency (benchmarks/app/load_test.py --abuse, docs/deploy.md).
 SWITCH_INTERVAL_S = 0.0005
+
+#: The most visitors behind one address opening the page at once (``--class-size``).
+CLASS_SIZE = 40
 
 #: Session lifetimes and limits, in the units Bokeh's `Server` takes.
 SESSION = {
@@ -207,6 +212,10 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
                    help="behind a reverse proxy (the shipped nginx): a client's address is "
                         "the last hop of X-Forwarded-For, which the proxy appends (the "
                         "page-build limit per address needs it; never set it without one)")
+    p.add_argument("--class-size", type=int, default=CLASS_SIZE, metavar="N",
+                   help="the most visitors behind one address (a school's NAT) opening the "
+                        "page at once: each address may have N pages built at once, then one "
+                        "every 4 s, and 3N page loads, then one a second (default %(default)s)")
     p.add_argument("--admin", action="store_true",
                    help="serve Panel's /admin page (requires BASIC_AUTH or --basic-auth-file)")
     p.add_argument("--basic-auth-file", default=None, metavar="PATH",
@@ -223,6 +232,8 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
         p.error("--admin needs BASIC_AUTH or --basic-auth-file: the admin page shows every session")
     if args.num_procs < 0:
         p.error("--num-procs must be >= 0")
+    if not 1 <= args.class_size <= 100_000:
+        p.error(f"--class-size must be between 1 and 100000, got {args.class_size}")
     if not args.allow_websocket_origin:
         args.allow_websocket_origin = [f"localhost:{args.port}", f"127.0.0.1:{args.port}"]
     return args
@@ -248,6 +259,17 @@ def server_options(args: argparse.Namespace) -> dict:
     opts.update(sign_sessions=True, generate_session_ids=True,
                 secret_key=(os.environ.get(SECRET_KEY_ENV) or secrets.token_urlsafe(32)).encode())
     return opts
+
+
+def size_limits(class_size: int) -> None:
+    """Size this process's page limits per client address for `class_size` visitors
+    behind one address opening the page at once: that many page builds at once
+    (`app.page.guard.BUILDS`) and three times as many page loads (`app.page.gate.PAGES`:
+    the class opening the page, each reloading once, some to spare); their rates stay."""
+    from app.page import gate, guard
+
+    guard.BUILDS.burst = float(class_size)
+    gate.PAGES.burst = float(3 * class_size)
 
 
 def applications() -> dict:
@@ -315,6 +337,7 @@ def main(argv: list[str] | None = None) -> None:
     except subprocess.TimeoutExpired:
         log.info("the Methods and Motor cards' kernels compile in the background")
         threading.Thread(target=load_methods, name="warm-methods", daemon=True).start()
+    size_limits(args.class_size)
     sys.setswitchinterval(SWITCH_INTERVAL_S)
     gc.freeze()  # the modules' objects: out of every later garbage collection's walk
     server = get_server(applications(), start=False, **server_options(args))

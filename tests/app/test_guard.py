@@ -368,3 +368,21 @@ def test_the_busy_page_sends_only_to_the_explorer(uri: str, expected: str) -> No
 
     assert link(uri) == expected
     assert link(uri.replace("/main", "/x/main", 1), "/x") == expected.replace("/main", "/x/main")
+
+
+def test_the_limits_are_sized_for_the_class_behind_one_address(monkeypatch) -> None:
+    """`--class-size N`: N page builds and 3N page loads at once per address (a whole
+    school behind one NAT raises it, with nginx's burst); nonsense refused."""
+    import app.page.gate
+    from app.serve import CLASS_SIZE, parse_args, size_limits
+
+    monkeypatch.setattr(app.page.guard, "BUILDS", AddressLimit(burst=1.0, rate=0.25))
+    monkeypatch.setattr(app.page.gate, "PAGES", AddressLimit(burst=1.0, rate=1.0))
+    size_limits(parse_args(["--class-size", "200"]).class_size)
+    assert app.page.guard.BUILDS.burst == 200 and app.page.gate.PAGES.burst == 600
+    assert [app.page.guard.BUILDS.allow("school") for _ in range(201)].count(True) == 200
+    size_limits(parse_args([]).class_size)
+    assert app.page.guard.BUILDS.burst == CLASS_SIZE == 40 and app.page.gate.PAGES.burst == 120
+    for bad in ("0", "-3", "1000001"):
+        with pytest.raises(SystemExit):
+            parse_args(["--class-size", bad])
