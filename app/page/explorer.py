@@ -180,7 +180,7 @@ class Explorer(param.Parameterized):
                            self.describer.announcer, [self.url_writer])
 
     def attach(self, shell: pn.Column, page: pn.Column | None = None) -> pn.Column:
-        """Show `page` (default: `view()`) in the served `shell` (`app.page.guard.shell`),
+        """Show `page` (default: `view()`) in the served `shell` (`app.page.guard.serve_shell`),
         in the session whose document is being filled: its end stops the explorer's
         runs, its sliders take the browser's moves as they arrive."""
         doc = pn.state.curdoc

@@ -30,11 +30,11 @@ from app.page.bucket import AddressLimit
 #: behind one address opening the link, and each reloading once), then one a second.
 PAGES = AddressLimit(burst=120.0, rate=1.0)
 
-#: Where a client past its page loads is sent, below the server's prefix.
-BUSY_PATH = "/main/busy"
-
 #: The explorer's own path, below the server's prefix (the only page `BusyPage` sends to).
 APP_PATH = "/main"
+
+#: Where a client past its page loads is sent, below the server's prefix.
+BUSY_PATH = f"{APP_PATH}/busy"
 
 
 def authorize(user: Any, path: str) -> bool | str:
