@@ -293,6 +293,7 @@ def main(argv: list[str] | None = None) -> None:
     """Serve the explorer at /main (and / redirecting there) until interrupted."""
     from panel.io.server import get_server
 
+    from app.page import memory
     from app.page.limits import quiet_closed_connections
     from core.warm import warm, warm_methods
 
@@ -340,6 +341,7 @@ def main(argv: list[str] | None = None) -> None:
     size_limits(args.class_size)
     sys.setswitchinterval(SWITCH_INTERVAL_S)
     gc.freeze()  # the modules' objects: out of every later garbage collection's walk
+    gc.set_threshold(*memory.THRESHOLDS)  # (and Python's own full collections rare)
     server = get_server(applications(), start=False, **server_options(args))
     server.start()
     log.info("explorer at http://%s:%d%s/main (websocket origins: %s)", args.address,

@@ -27,8 +27,8 @@ messages are answered).
 
 ``--gc PAGES`` instead builds PAGES sessions' pages in this process, keeping them as
 the server keeps its sessions, and prints the models of each page's document, the time
-of each and of CPython's full garbage collections during it (what makes the slow loads
-slow).
+of each and of CPython's full garbage collections during it, with the collector's
+thresholds the server sets (``--python-thresholds``: Python's own).
 
 The server runs as the image runs it, with BOKEH_VALIDATE_DOC=false (Bokeh's checks of
 each new document, which only log; `make serve` and the tests keep them on);
@@ -203,10 +203,12 @@ def summarize(path: Path, top: int = 25) -> dict:
             "inclusive_libraries_pct": share(inclusive["libraries"]), "self_pct": share(own)}
 
 
-def gc_pauses(pages: int) -> list[tuple[float, float, int]]:
+def gc_pauses(pages: int, python_thresholds: bool = False) -> list[tuple[float, float, int]]:
     """Build `pages` sessions' documents in this process, keeping each (as the server
-    keeps its sessions): per page, (ms to build it, ms of CPython's full garbage
-    collections during the build, models in its document)."""
+    keeps its sessions), with the collector as the server runs it (its modules' objects
+    frozen after a first page, `app.page.memory.THRESHOLDS`, `SessionMemory` told of each
+    build), or with Python's own thresholds: per page, (ms to build it, ms of CPython's
+    full garbage collections during the build, models in its document)."""
     import gc
 
     os.environ.setdefault("BOKEH_VALIDATE_DOC", "false")
@@ -215,8 +217,15 @@ def gc_pauses(pages: int) -> list[tuple[float, float, int]]:
     from panel.io.state import set_curdoc
 
     from app.page.explorer import Explorer
+    from app.page.memory import THRESHOLDS, SessionMemory
 
     pn.extension("katex", notifications=False)
+    Explorer().view().get_root(Document())  # (what app.serve does before it serves)
+    gc.freeze()
+    if not python_thresholds:
+        gc.set_threshold(*THRESHOLDS)
+    memory = SessionMemory()
+
     full = {"start": 0.0, "total": 0.0}
 
     def watch(phase: str, info: dict) -> None:
@@ -238,8 +247,10 @@ def gc_pauses(pages: int) -> list[tuple[float, float, int]]:
             out.append((1e3 * (time.perf_counter() - t0), 1e3 * full["total"],
                         len(list(doc.models))))
             kept.append((doc, explorer))
+            memory.built()
     finally:
         gc.callbacks.remove(watch)
+        memory.stop()
     return out
 
 
@@ -258,6 +269,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--gc", type=int, metavar="PAGES",
                    help="instead: build PAGES pages in this process, keeping each, and "
                         "print each one's build time and full garbage collections")
+    p.add_argument("--python-thresholds", action="store_true",
+                   help="with --gc: the collector's thresholds as Python sets them, not as "
+                        "the server does (app.page.memory.THRESHOLDS)")
     p.add_argument("--revs", nargs=2, metavar=("A", "B"),
                    help="instead: serve git revisions A and B side by side and alternate "
                         "their loads (each load, then 0.5 s for what it leaves to do)")
@@ -274,7 +288,7 @@ def main(argv: list[str] | None = None) -> int:
             args.json.write_text(json.dumps(res, indent=2) + "\n")
         return 0
     if args.gc:
-        for i, (ms, gc_ms, models) in enumerate(gc_pauses(args.gc), 1):
+        for i, (ms, gc_ms, models) in enumerate(gc_pauses(args.gc, args.python_thresholds), 1):
             print(f"page {i:3d} ({models} models): {ms:5.0f} ms, of which full garbage "
                   f"collection {gc_ms:4.0f} ms")
         return 0

@@ -8,7 +8,7 @@ import weakref
 
 import pytest
 
-from app.page.memory import SessionMemory
+from app.page.memory import THRESHOLDS, SessionMemory
 
 
 class Node:
@@ -103,3 +103,35 @@ def test_with_few_open_nothing_is_frozen_and_a_close_needs_no_sweep() -> None:
     finally:
         m.stop()
         gc.collect()
+
+
+def full_collections_over_builds(thresholds: tuple[int, int, int], builds: int = 8) -> int:
+    """The full collections Python runs by itself while `builds` pages' worth of objects
+    (37,000 each, kept alive: a page's document, `app.page.memory`) are allocated, with
+    the collector's `thresholds`."""
+    counts = []
+
+    def count(phase: str, info: dict) -> None:
+        if phase == "stop" and info["generation"] == 2:
+            counts.append(1)
+
+    saved = gc.get_threshold()
+    gc.collect()
+    gc.set_threshold(*thresholds)
+    gc.callbacks.append(count)
+    try:
+        pages = [[Node() for _ in range(37_000)] for _ in range(builds)]
+    finally:
+        gc.callbacks.remove(count)
+        gc.set_threshold(*saved)
+    del pages
+    gc.collect()
+    return len(counts)
+
+
+def test_the_servers_thresholds_keep_pythons_full_collections_out_of_a_run_of_builds() -> None:
+    """Eight page builds with fewer than `freeze_from` sessions open (nothing frozen):
+    with Python's thresholds the collector walks them in full every other build or so,
+    with the server's (`THRESHOLDS`) not once."""
+    assert full_collections_over_builds((700, 10, 10)) >= 2
+    assert full_collections_over_builds(THRESHOLDS) == 0
