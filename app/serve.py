@@ -61,6 +61,8 @@ from pathlib import Path
 
 from tornado.web import GZipContentEncoding, OutputTransform
 
+from app.page.bucket import CLASS_SIZE
+
 #: The environment variable holding the key session ids are signed with (Bokeh's own
 #: name; at least 32 characters).  Unset, a key is drawn at start: every process of one
 #: `--num-procs` server shares it; replicas behind a proxy need the same one only if a
@@ -81,8 +83,6 @@ METHODS_WAIT_S = 4.0
 #: doubled the open sessions' latency (benchmarks/app/load_test.py --abuse, docs/deploy.md).
 SWITCH_INTERVAL_S = 0.0005
 
-#: The most visitors behind one address opening the page at once (``--class-size``).
-CLASS_SIZE = 40
 
 #: Session lifetimes and limits, in the units Bokeh's `Server` takes.
 SESSION = {
@@ -264,12 +264,12 @@ def server_options(args: argparse.Namespace) -> dict:
 def size_limits(class_size: int) -> None:
     """Size this process's page limits per client address for `class_size` visitors
     behind one address opening the page at once: that many page builds at once
-    (`app.page.guard.BUILDS`) and three times as many page loads (`app.page.gate.PAGES`:
-    the class opening the page, each reloading once, some to spare); their rates stay."""
+    (`app.page.guard.BUILDS`) and `PAGES_PER_VISITOR` times as many page loads
+    (`app.page.gate.PAGES`); their rates stay."""
     from app.page import gate, guard
 
     guard.BUILDS.burst = float(class_size)
-    gate.PAGES.burst = float(3 * class_size)
+    gate.PAGES.burst = float(gate.PAGES_PER_VISITOR * class_size)
 
 
 def applications() -> dict:

@@ -11,6 +11,12 @@ import threading
 import time
 from collections.abc import Callable
 
+#: The most visitors behind one client address (a school's NAT) that open the page at
+#: once, by default (``python -m app.serve --class-size``): the page builds' and page
+#: loads' bursts per address are sized for it (`app.page.guard.BUILDS`,
+#: `app.page.gate.PAGES`).
+CLASS_SIZE = 40
+
 
 def take(tokens: float, elapsed: float, burst: float, rate: float) -> tuple[float, bool]:
     """Ask a bucket that held `tokens` `elapsed` s ago for one token: the tokens it holds

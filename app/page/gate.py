@@ -24,11 +24,15 @@ from urllib.parse import urlencode, urlsplit
 import panel as pn
 from tornado.web import RequestHandler
 
-from app.page.bucket import AddressLimit
+from app.page.bucket import CLASS_SIZE, AddressLimit
 
-#: The page loads of this server process, per client address: 120 at once (a class
-#: behind one address opening the link, and each reloading once), then one a second.
-PAGES = AddressLimit(burst=120.0, rate=1.0)
+#: Page loads at once per visitor of a class behind one address: opening the link, one
+#: reload, one to spare.
+PAGES_PER_VISITOR = 3
+
+#: The page loads of this server process, per client address: 120 at once (a class of
+#: `CLASS_SIZE`, `PAGES_PER_VISITOR` each), then one a second.
+PAGES = AddressLimit(burst=float(PAGES_PER_VISITOR * CLASS_SIZE), rate=1.0)
 
 #: The explorer's own path, below the server's prefix (the only page `BusyPage` sends to).
 APP_PATH = "/main"

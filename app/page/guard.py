@@ -30,7 +30,7 @@ from panel.io.location import Location
 from panel.io.resources import get_dist_path
 
 from app.page import layout
-from app.page.bucket import AddressLimit
+from app.page.bucket import CLASS_SIZE, AddressLimit
 from app.page.explorer import Explorer
 from app.page.memory import SessionMemory
 from app.page.pulls import PullGuard
@@ -94,7 +94,7 @@ def build_page(query: Mapping[str, Any]) -> tuple[Explorer, pn.Column]:
 #: its process; past its bucket a client gets `refusal_note` in its page instead of the
 #: explorer, which costs a few ms.  40 at once: a class behind one address (a school's
 #: NAT) opening the page; then one every 4 s: that class reloading now and then.
-BUILDS = AddressLimit(burst=40.0, rate=0.25)
+BUILDS = AddressLimit(burst=float(CLASS_SIZE), rate=0.25)
 
 #: The open sessions of this server process, kept out of the garbage collector's walks.
 MEMORY = SessionMemory()

@@ -372,10 +372,13 @@ def test_the_busy_page_sends_only_to_the_explorer(uri: str, expected: str) -> No
 
 def test_the_limits_are_sized_for_the_class_behind_one_address(monkeypatch) -> None:
     """`--class-size N`: N page builds and 3N page loads at once per address (a whole
-    school behind one NAT raises it, with nginx's burst); nonsense refused."""
+    school behind one NAT raises it, with nginx's burst); nonsense refused.  Without it
+    (and under `panel serve app/main.py`) the limits are those of the default class."""
     import app.page.gate
-    from app.serve import CLASS_SIZE, parse_args, size_limits
+    from app.page.bucket import CLASS_SIZE
+    from app.serve import parse_args, size_limits
 
+    assert (app.page.guard.BUILDS.burst, app.page.gate.PAGES.burst) == (40, 120)
     monkeypatch.setattr(app.page.guard, "BUILDS", AddressLimit(burst=1.0, rate=0.25))
     monkeypatch.setattr(app.page.gate, "PAGES", AddressLimit(burst=1.0, rate=1.0))
     size_limits(parse_args(["--class-size", "200"]).class_size)
