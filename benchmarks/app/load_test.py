@@ -538,14 +538,24 @@ async def run_levels(url: str, levels: list[int], duration: float, warmup: float
 # ---------------------------------------------------------------- servers to test
 
 
-def serve(procs: int, log: Path | None = None) -> tuple[subprocess.Popen, str]:
+#: The ``--class-size`` of a server started to measure capacity, memory or page loads:
+#: every simulated visitor comes from 127.0.0.1, one address, whose page loads and
+#: builds the server would otherwise limit as a class's (`app.page.bucket.CLASS_SIZE`).
+#: The abuse mode keeps the default: those limits are what it tests.
+AUDIENCE = 100_000
+
+
+def serve(procs: int, log: Path | None = None,
+          class_size: int | None = None) -> tuple[subprocess.Popen, str]:
     """Start `python -m app.serve --num-procs procs` on a free loopback port (its output
-    to the file `log`, if given)."""
+    to the file `log`, if given; with `--class-size class_size`, if given)."""
     port = free_port()
     out = open(log, "wb") if log else subprocess.DEVNULL
+    sized = ["--class-size", str(class_size)] if class_size else []
     try:
         proc = subprocess.Popen(
-            [sys.executable, "-m", "app.serve", "--port", str(port), "--num-procs", str(procs)],
+            [sys.executable, "-m", "app.serve", "--port", str(port), "--num-procs", str(procs),
+             *sized],
             cwd=ROOT, stdout=out, stderr=subprocess.STDOUT, start_new_session=True)
     finally:
         if log:
@@ -651,9 +661,11 @@ def main(argv: list[str] | None = None) -> int:
     if args.serve is not None:
         if args.abuse is not None:  # its log lines are counted per window
             log = Path(tempfile.mkdtemp(prefix="load-test-")) / "server.log"
-        started, url = serve(args.serve, log)
+        class_size = None if args.abuse is not None else AUDIENCE
+        started, url = serve(args.serve, log, class_size)
         pids = [started.pid]
-        setup = f"python -m app.serve --num-procs {args.serve}"
+        setup = f"python -m app.serve --num-procs {args.serve}" + (
+            f" --class-size {class_size}" if class_size else "")
     elif args.replicas is not None:
         sys.path.insert(0, str(ROOT / "docker"))
         import replicas  # docker/replicas.py

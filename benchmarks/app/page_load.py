@@ -56,7 +56,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path[:0] = [str(ROOT), str(ROOT / "benchmarks" / "app")]
 
-from load_test import loopback_only, serve, stop  # noqa: E402
+from load_test import AUDIENCE, loopback_only, serve, stop  # noqa: E402
 from soak import yardstick  # noqa: E402
 
 #: Target: median server time of a page load, in seconds.
@@ -298,7 +298,7 @@ def main(argv: list[str] | None = None) -> int:
     res: dict = {"yardstick_before_us": round(yardstick(), 1)}
     validate = "true" if args.validate_doc else "false"
     os.environ["BOKEH_VALIDATE_DOC"] = validate  # (the server started below inherits it)
-    proc, url = serve(1)
+    proc, url = serve(1, class_size=AUDIENCE)
     loopback_only(url)
     res["setup"] = (f"BOKEH_VALIDATE_DOC={validate} python -m app.serve --num-procs 1 "
                     f"({url}); {os.cpu_count()} CPUs")

@@ -57,6 +57,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path[:0] = [str(ROOT), str(ROOT / "benchmarks" / "app")]
 
 from load_test import (  # noqa: E402
+    AUDIENCE,
     Session,
     Stats,
     free_port,
@@ -104,7 +105,8 @@ def serve_trimmed() -> tuple[subprocess.Popen, str]:
     """Like load_test's ``serve(1)``, with glibc's malloc_trim(0) run every 5 s in the
     server (a diagnosis: memory the allocator holds free vs memory still in use)."""
     port = free_port()
-    proc = subprocess.Popen([sys.executable, "-c", TRIMMED_SERVER, "--port", str(port)],
+    proc = subprocess.Popen([sys.executable, "-c", TRIMMED_SERVER, "--port", str(port),
+                             "--class-size", str(AUDIENCE)],
                             cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True)
     wait_http(f"http://127.0.0.1:{port}/liveness")
@@ -366,7 +368,7 @@ def main(argv: list[str] | None = None) -> int:
         p.error("--loads, --changes and --every must be >= 1")
 
     res: dict = {"yardstick_before_us": round(yardstick(), 1)}
-    proc, url = serve_trimmed() if args.malloc_trim else serve(1)
+    proc, url = serve_trimmed() if args.malloc_trim else serve(1, class_size=AUDIENCE)
     loopback_only(url)
     res["setup"] = (f"python -m app.serve --num-procs 1 ({url})"
                     f"{' with malloc_trim(0) every 5 s' if args.malloc_trim else ''}; "
