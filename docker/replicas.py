@@ -123,8 +123,11 @@ class Stack:
     """N app.serve replicas and nginx with docker/nginx.conf, all on 127.0.0.1."""
 
     def __init__(self, n: int = 2, procs: int = 1, workdir: str | None = None,
-                 python: str = sys.executable) -> None:
+                 python: str = sys.executable, class_size: int | None = None) -> None:
+        """`class_size`: the replicas' ``--class-size`` (default theirs); nginx's limits
+        are docker/nginx.conf's whatever it is."""
         self.n, self.procs, self.python = n, procs, python
+        self.class_size = class_size
         self.dir = Path(workdir or tempfile.mkdtemp(prefix="explorer-replicas-"))
         self.replicas: list[Replica] = []
         self.nginx: subprocess.Popen | None = None
@@ -150,6 +153,8 @@ class Stack:
                 cmd = [self.python, "-m", "app.serve", "--address", "127.0.0.1",
                        "--port", str(port), "--num-procs", str(self.procs),
                        "--behind-proxy"]
+                if self.class_size:
+                    cmd += ["--class-size", str(self.class_size)]
                 for o in origins:
                     cmd += ["--allow-websocket-origin", o]
                 proc = subprocess.Popen(cmd, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT,

@@ -670,14 +670,17 @@ def main(argv: list[str] | None = None) -> int:
         sys.path.insert(0, str(ROOT / "docker"))
         import replicas  # docker/replicas.py
 
-        stack = replicas.Stack(n=args.replicas, procs=args.procs).start()
+        class_size = None if args.abuse is not None else AUDIENCE
+        stack = replicas.Stack(n=args.replicas, procs=args.procs,
+                               class_size=class_size).start()
         url = stack.url + "/main"
         pids = [r.proc.pid for r in stack.replicas]
         if args.procs == 1:  # each replica is one serving process: sessions from the log
             serving = pids
             placement = load_figures.replica_placement(stack)
-        setup = (f"{args.replicas} x python -m app.serve --num-procs {args.procs} behind "
-                 f"nginx {stack.nginx_version} (docker/nginx.conf)")
+        setup = (f"{args.replicas} x python -m app.serve --num-procs {args.procs}"
+                 + (f" --class-size {class_size}" if class_size else "")
+                 + f" behind nginx {stack.nginx_version} (docker/nginx.conf)")
     else:
         url = args.url or "http://127.0.0.1:5006/main"
         setup = f"{url} (pids {pids or 'not given'})"
