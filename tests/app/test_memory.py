@@ -117,6 +117,8 @@ def full_collections_over_builds(thresholds: tuple[int, int, int], builds: int =
 
     saved = gc.get_threshold()
     gc.collect()
+    gc.freeze()  # (as the server does at its start: what this process holds already is
+    gc.collect()  # out of the walks, and of the count by which Python decides on one)
     gc.set_threshold(*thresholds)
     gc.callbacks.append(count)
     try:
@@ -124,6 +126,7 @@ def full_collections_over_builds(thresholds: tuple[int, int, int], builds: int =
     finally:
         gc.callbacks.remove(count)
         gc.set_threshold(*saved)
+        gc.unfreeze()
     del pages
     gc.collect()
     return len(counts)
