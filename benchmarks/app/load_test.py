@@ -658,19 +658,19 @@ def main(argv: list[str] | None = None) -> int:
     serving = placement = None
     pids = [int(x) for x in args.pids.split(",") if x.strip()]
     log = None
+    # (the servers started here: the abuse mode tests the default per-address limits)
+    class_size = None if args.abuse is not None else AUDIENCE
+    sized = f" --class-size {class_size}" if class_size else ""
     if args.serve is not None:
         if args.abuse is not None:  # its log lines are counted per window
             log = Path(tempfile.mkdtemp(prefix="load-test-")) / "server.log"
-        class_size = None if args.abuse is not None else AUDIENCE
         started, url = serve(args.serve, log, class_size)
         pids = [started.pid]
-        setup = f"python -m app.serve --num-procs {args.serve}" + (
-            f" --class-size {class_size}" if class_size else "")
+        setup = f"python -m app.serve --num-procs {args.serve}{sized}"
     elif args.replicas is not None:
         sys.path.insert(0, str(ROOT / "docker"))
         import replicas  # docker/replicas.py
 
-        class_size = None if args.abuse is not None else AUDIENCE
         stack = replicas.Stack(n=args.replicas, procs=args.procs,
                                class_size=class_size).start()
         url = stack.url + "/main"
@@ -678,9 +678,8 @@ def main(argv: list[str] | None = None) -> int:
         if args.procs == 1:  # each replica is one serving process: sessions from the log
             serving = pids
             placement = load_figures.replica_placement(stack)
-        setup = (f"{args.replicas} x python -m app.serve --num-procs {args.procs}"
-                 + (f" --class-size {class_size}" if class_size else "")
-                 + f" behind nginx {stack.nginx_version} (docker/nginx.conf)")
+        setup = (f"{args.replicas} x python -m app.serve --num-procs {args.procs}{sized} "
+                 f"behind nginx {stack.nginx_version} (docker/nginx.conf)")
     else:
         url = args.url or "http://127.0.0.1:5006/main"
         setup = f"{url} (pids {pids or 'not given'})"

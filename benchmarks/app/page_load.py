@@ -102,17 +102,22 @@ def timed_loads(url: str, pid: int, loads: int) -> dict:
     per load."""
     c0 = cpu_s(pid)
     times = [load(url) for _ in range(loads)]
-    cpu = (cpu_s(pid) - c0) / loads
+    return summary(times, cpu_s(pid) - c0)
+
+
+def summary(times: list[float], cpu: float) -> dict:
+    """Page loads that took `times` (s) and `cpu` s of the server's CPU in all: their
+    count, times (ms, sorted), median, min, p90 and max, and the CPU per load (ms)."""
     ms = sorted(1e3 * t for t in times)
-    return {"loads": loads, "ms": [round(x, 1) for x in ms],
+    return {"loads": len(ms), "ms": [round(x, 1) for x in ms],
             "median_ms": round(statistics.median(ms), 1), "min_ms": round(ms[0], 1),
             "p90_ms": round(ms[int(0.9 * (len(ms) - 1))], 1), "max_ms": round(ms[-1], 1),
-            "server_cpu_ms_per_load": round(1e3 * cpu, 1)}
+            "server_cpu_ms_per_load": round(1e3 * cpu / len(ms), 1)}
 
 
 def paired(revs: list[str], loads: int, idle: float) -> dict:
     """Revisions `revs` served side by side (a worktree each), their loads alternated:
-    per revision, the loads' times and the server's CPU per load, as `timed_loads`."""
+    per revision, the loads' `summary`, as `timed_loads`."""
     import contextlib
 
     from app_latency import worktree
@@ -135,13 +140,7 @@ def paired(revs: list[str], loads: int, idle: float) -> dict:
                 times[rev].append(load(url))
                 time.sleep(0.5)  # (what the load leaves to do: the session's first messages)
                 cpu[rev] += cpu_s(pids[rev]) - c0
-    out = {}
-    for rev in revs:
-        ms = sorted(1e3 * t for t in times[rev])
-        out[rev] = {"median_ms": round(statistics.median(ms), 1), "min_ms": round(ms[0], 1),
-                    "p90_ms": round(ms[int(0.9 * (len(ms) - 1))], 1),
-                    "server_cpu_ms_per_load": round(1e3 * cpu[rev] / loads, 1)}
-    return out
+    return {rev: summary(times[rev], cpu[rev]) for rev in revs}
 
 
 def py_spy() -> str:
