@@ -83,7 +83,6 @@ METHODS_WAIT_S = 4.0
 #: doubled the open sessions' latency (benchmarks/app/load_test.py --abuse, docs/deploy.md).
 SWITCH_INTERVAL_S = 0.0005
 
-
 #: Session lifetimes and limits, in the units Bokeh's `Server` takes.
 SESSION = {
     # a session created by a GET whose websocket has not connected is discarded after
