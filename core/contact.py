@@ -28,6 +28,10 @@ def _grid_size(n: object) -> int:
     return operator.index(n)
 
 
+#: Timelines of single times a Contact keeps (``Contact._timeline``).
+INSTANTS = 8
+
+
 @dataclass(frozen=True)
 class Contact:
     """Two identical elastic spheres in one intermittent oblique contact (Zharii 1996).
@@ -172,12 +176,35 @@ class Contact:
     def at(self, tau: ArrayLike) -> Timeline:
         """Every quantity below at the times tau, each computed on first use and kept
         (``core.timeline``): ask it for several quantities on the same times rather than
-        calling the methods one by one."""
+        calling the methods one by one.  For one time (a scalar or one element) the
+        Timeline is this contact's own for that time, shared by every call at it (its
+        tau is a read-only copy)."""
         return self._timeline(as_reals(tau, "tau"))
 
+    @cached_property
+    def _instants(self) -> dict[tuple, Timeline]:
+        """The Timelines of single times asked so far (at most `INSTANTS`), by the time's
+        shape and bytes; those of one time share their passes (`Timeline.passes`)."""
+        return {}
+
     def _timeline(self, tau: NDArray[np.float64]) -> Timeline:
-        """``at`` of times already validated."""
-        return Timeline(tau, self.psi, self._half_e[0])
+        """``at`` of times already validated.  A view asks for many quantities at one
+        time, one method at a time (the phase, the radii, the forces, the pressure and
+        the traction at the time shown): each quantity of one time is computed once."""
+        if tau.size != 1:
+            return Timeline(tau, self.psi, self._half_e[0])
+        instants, time = self._instants, tau.tobytes()
+        line = instants.get((tau.shape, time))
+        if line is None:
+            if len(instants) >= INSTANTS:
+                instants.clear()
+            held = np.array(tau, dtype=np.float64)
+            held.setflags(write=False)
+            shared = next((other.passes for (_, t), other in instants.items() if t == time),
+                          {})
+            line = instants[tau.shape, time] = Timeline(held, self.psi, self._half_e[0],
+                                                        shared)
+        return line
 
     def _along(self, tau: ArrayLike, name: str) -> NDArray:
         """Quantity ``name`` of ``at(tau)``."""

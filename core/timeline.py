@@ -13,7 +13,7 @@ contact, and are read-only: they are shared between the quantities derived from 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
@@ -36,19 +36,25 @@ class Timeline:
     float64 array).
 
     ``tau`` is held, not copied: change it and ask again, and the quantities already
-    computed will not follow (make a new Timeline instead)."""
+    computed will not follow (make a new Timeline instead).  ``passes`` holds each pass
+    made, flat, by quantity code: Timelines of the same times in other shapes may share
+    it (``Contact.at`` does, for one time)."""
 
     tau: NDArray[np.float64]
     psi: float
     sin_half_e: float
+    passes: dict[int, NDArray[np.float64]] = field(default_factory=dict, repr=False)
 
     def _pass(self, q: int) -> NDArray[np.float64]:
         """Quantity code q of ``core.kernels`` at every time, as a read-only array."""
-        tau = np.ascontiguousarray(self.tau).reshape(1, -1)
-        out = np.empty(self.tau.shape)
-        kernels.rows(q, tau, np.array([self.psi]), np.array([self.sin_half_e]),
-                     out.reshape(1, -1))
-        return _fixed(out)
+        flat = self.passes.get(q)
+        if flat is None:
+            tau = np.ascontiguousarray(self.tau).reshape(1, -1)
+            flat = np.empty(tau.size)
+            kernels.rows(q, tau, np.array([self.psi]), np.array([self.sin_half_e]),
+                         flat.reshape(1, -1))
+            self.passes[q] = _fixed(flat)
+        return _fixed(flat.reshape(self.tau.shape))
 
     @cached_property
     def clock(self) -> NDArray[np.float64]:

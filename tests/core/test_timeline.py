@@ -58,6 +58,52 @@ def test_quantities_are_read_only_and_have_the_shape_of_tau() -> None:
     assert c.tangential_force([1.0, 2.0]).shape == (2,)
 
 
+@pytest.mark.parametrize(("psi", "tau0"), CASES)
+def test_one_time_is_computed_once_in_every_shape_and_equals_the_times_alone(
+        psi: float, tau0: float, monkeypatch) -> None:
+    """A view asks many quantities at the time it shows, one method at a time and in
+    several shapes (a scalar, one element, a column): each quantity of that time is one
+    compiled pass, shared, and bit for bit what a grid of times gives at it."""
+    from core import kernels
+
+    runs = []
+    rows = kernels.rows
+    monkeypatch.setattr(kernels, "rows", lambda q, *args: (runs.append(q), rows(q, *args)))
+    c = Contact(psi, tau0)
+    tau = float(np.mean([c.tau0, c.tau_end]))
+    grid = np.array([c.tau0 - 0.1, tau, c.tau_end])
+    on_grid = {q: getattr(c.at(grid), q)[1] for q in QUANTITIES}
+    traction = c.traction(0.1, grid)[1]
+    runs.clear()
+    for shape in [(), (1,), (1, 1), (), (1,)]:
+        times = np.full(shape, tau)
+        for q in QUANTITIES:
+            values = getattr(c.at(times), q)
+            assert values.shape == shape and not values.flags.writeable, (shape, q)
+            assert values.tobytes() == on_grid[q].tobytes(), (shape, q)
+        assert c.phase(times).tobytes() == on_grid["phase"].tobytes()
+        assert c.traction(0.1, times).tobytes() == traction.tobytes()
+    assert sorted(runs) == sorted(set(runs))  # each kernel quantity once
+    assert c.at(tau) is c.at(np.float64(tau)) is c.at([tau][0])
+    # the time is held as a copy: changing the caller's array changes nothing
+    times = np.array([tau])
+    line = c.at(times)
+    times[0] = c.tau0 - 1.0
+    assert c.at(np.array([tau])) is line and line.tau[0] == tau
+    assert c.at(times).phase[0] == Phase.NO_CONTACT
+
+
+def test_a_contact_keeps_a_few_single_times() -> None:
+    from core.contact import INSTANTS
+
+    c = Contact(2.414, math.pi / 6)
+    taus = np.linspace(0.6, 2.5, 3 * INSTANTS)
+    for t in taus:
+        np.testing.assert_array_equal(c.at(t).tangential_force, c.at(taus).tangential_force[
+            list(taus).index(t)])
+    assert len(c._instants) <= INSTANTS
+
+
 def test_long_two_dimensional_arrays_give_the_values_of_each_row() -> None:
     c = Contact(28.35, -0.9)
     tau = np.linspace(-1.0, 4.0, 2 * 40_000).reshape(2, -1)
