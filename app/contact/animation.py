@@ -14,10 +14,10 @@ import time
 from typing import Any, Protocol
 
 import param
-from panel.io import hold
 
 from app.contact.player import Player, frame_index, frame_taus
 from app.contact.state import ExplorerState
+from app.kit.batch import held
 from app.kit.widgets import finite
 from core import Contact
 
@@ -112,12 +112,12 @@ class Animation(param.Parameterized):
         """(Re)start the browser's player at `progress` with the current contact and speed.
 
         The frames are Bokeh model changes made from a widget callback, which Panel runs
-        without the document lock: they must go through `hold()` (without it, a change
+        without the document lock: they must go through `held()` (without it, a change
         made while a message is being written raises in Bokeh and the player never
         starts)."""
         speed = self.view.state.speed
         self.started = (progress, time.monotonic(), speed)
-        with hold():
+        with held():
             self.view.player.play(self.view.shown, progress, speed, CONTACT_SECONDS)
 
     def _on_speed(self, event: param.parameterized.Event) -> None:
@@ -133,7 +133,7 @@ class Animation(param.Parameterized):
         if playing:
             self.start(self.progress_of(view.state.tau))
             return
-        with hold():  # one message: the player stops and the plots settle on its frame
+        with held():  # one message: the player stops and the plots settle on its frame
             view.player.stop()
             view.state.tau = self.clock_tau() if self.stop_at is None else self.stop_at
             view.show_state()  # (if the frame is the tau the play started from)

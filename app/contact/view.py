@@ -24,7 +24,6 @@ import io
 
 import panel as pn
 import param
-from panel.io import hold
 
 from app.contact import export
 from app.contact.animation import Animation
@@ -40,6 +39,7 @@ from app.contact.readout import Readout
 from app.contact.spheres import SpheresScene
 from app.contact.state import PRESETS, SI_KEYS, ExplorerState, drive_angle
 from app.contact.traction import DiscScene, TractionScene
+from app.kit.batch import held
 from app.kit.figures import Scene
 from app.kit.style import TAB_ROW_CSS
 from app.kit.texts import PaneText
@@ -145,7 +145,7 @@ class ContactView(param.Parameterized):
     def _on_tab(self, event) -> None:
         if event.new not in range(len(self.tabbed)):  # (from a script: no such tab)
             return
-        with hold():
+        with held():
             self.catch_up([self.tabbed[event.new]])
             self._show_figure(event.new)
 
@@ -158,7 +158,7 @@ class ContactView(param.Parameterized):
     def catch_up(self, scenes: list[Scene]) -> None:
         """Bring those of `scenes` that missed changes while hidden up to date."""
         c, tau = self.shown, self.state.tau
-        with hold():
+        with held():
             for scene in scenes:
                 if scene in self._stale:
                     self._stale.discard(scene)
@@ -170,7 +170,7 @@ class ContactView(param.Parameterized):
         the others are marked to catch up when shown."""
         c = self.shown
         tau = self._shown_tau = self.state.tau
-        with hold():
+        with held():
             for scene in self.scenes:
                 if self.is_shown(scene):
                     scene.update_contact(c)
@@ -189,7 +189,7 @@ class ContactView(param.Parameterized):
         """Refresh what depends on tau only (a scrub, a step, the frame a pause lands on)."""
         c = self.shown
         tau = self._shown_tau = self.state.tau
-        with hold():
+        with held():
             for scene in self.scenes:
                 if scene in self._stale:
                     continue  # caught up in full when shown
@@ -214,7 +214,7 @@ class ContactView(param.Parameterized):
         """The selector, its note and the T(tau) family follow the state's preset ('' once
         left); a preset opens the tab of its figure (Figs. 4, 8, 9)."""
         self.controls.show_preset(self.state.preset, NOTES.get(self.state.preset, ""))
-        with hold():
+        with held():
             self._show_family()
             self._open_preset_tab()
 
@@ -235,7 +235,7 @@ class ContactView(param.Parameterized):
         self.impulse.set_log(self.state.log_psi)
         self._stale.add(self.impulse)
         if self.is_shown(self.impulse):
-            with hold():
+            with held():
                 self.catch_up([self.impulse])
                 self._show_figure(self.tabbed.index(self.impulse))
 

@@ -19,11 +19,11 @@ import io
 import panel as pn
 import param
 from bokeh.models import ColumnDataSource
-from panel.io import hold
 
 from app.dem import data
 from app.dem.state import DemState
 from app.dem.upload import CsvUpload
+from app.kit.batch import held
 from app.kit.figures import fit_range, new_figure, style_figure
 from app.kit.widgets import ERROR_STYLE, bind, shortened, text_html
 from core.dem_check import CASES, lammps
@@ -84,7 +84,7 @@ class DemCard(pn.viewable.Viewer):
 
     def _on_collapsed(self, event: param.parameterized.Event) -> None:
         if not event.new and not self.built:
-            with hold():
+            with held():
                 self.card.objects = self._build()
 
     # ------------------------------------------------------------------ build
@@ -160,7 +160,7 @@ class DemCard(pn.viewable.Viewer):
         """The case's exact curve, LAMMPS' runs of it and its note."""
         name = self.state.case
         columns = data.exact_columns(name)
-        with hold():
+        with held():
             self.sources["exact"].data = columns
             fit_range(self.figure.x_range, columns["tau"], pad=0.02)
             fit_range(self.figure.y_range, columns["P"], columns["minus_P"])
@@ -171,7 +171,7 @@ class DemCard(pn.viewable.Viewer):
     def _show_models(self) -> None:
         """LAMMPS' runs of the models chosen; the deck is the first one's."""
         models = list(self.state.models)
-        with hold():
+        with held():
             self.sources["lammps"].data = data.overlay_columns(self.state.case, models)
             self.deck_button.label = f"LAMMPS deck: {data.deck_model(models)}"
 
@@ -182,7 +182,7 @@ class DemCard(pn.viewable.Viewer):
         """The score table, or the reason there is none under the upload box."""
         s = self.state
         text = shortened(s.message)
-        with hold():
+        with held():
             self.message.param.update(object=text_html(text), visible=bool(text))
             if s.score is None:
                 self.score_table.param.update(object="", visible=False)

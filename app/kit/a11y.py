@@ -184,7 +184,7 @@ class LiveText(WrittenHTML):
     status region, kept in the page while its `text`, shown as text, changes); out of
     sight.  `write(text=...)` changes the text."""
 
-    text = param.String(default="")
+    text = param.String(default="", allow_refs=False)
 
     _template = '<div id="region" role="status" aria-live="polite" aria-atomic="true"></div>'
     _scripts: ClassVar[dict[str, str]] = dict.fromkeys(

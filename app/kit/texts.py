@@ -19,7 +19,6 @@ same property, without Panel's recomputation.
 
 from __future__ import annotations
 
-import contextlib
 import json
 from typing import Any, ClassVar
 
@@ -28,8 +27,9 @@ import param
 from bokeh.core.property.validation import validate
 from bokeh.document import Document
 from bokeh.model import Model
-from panel.io import hold
 from panel.reactive import ReactiveHTML
+
+from app.kit.batch import held
 
 
 def write_past_panel(component: param.Parameterized, values: dict[str, Any], model: Model,
@@ -41,10 +41,9 @@ def write_past_panel(component: param.Parameterized, values: dict[str, Any], mod
         for name, value in values.items():  # (not `param.update`: it reads every
             setattr(component, name, value)  # parameter of the component first)
     # a change held already goes out with the others; outside Panel's handling of a
-    # change, Bokeh's lock may not be held (`hold`); the values passed the parameters'
+    # change, Bokeh's lock may not be held (`held`); the values passed the parameters'
     # own checks, so Bokeh's are not repeated
-    held = pn.state.curdoc.callbacks.hold_value
-    with contextlib.nullcontext() if held else hold(), validate(False):
+    with held(), validate(False):
         model.update(**properties)
 
 
@@ -56,7 +55,9 @@ class WrittenHTML(ReactiveHTML):
     page.  A parameter that the component's scripts set from the browser
     (`data.NAME = ...`) is one Panel watches on the model: inside a served document's
     `panel.io.hold` Panel sends the write without running that watcher; elsewhere the
-    watcher runs and finds the parameter equal already.
+    watcher runs and finds the parameter equal already.  The parameters written on every
+    move are declared `allow_refs=False`: they take values, and Panel would otherwise
+    look for a reference in each value set (~5 µs a set).
     """
 
     def data_model(self, doc: Document | None) -> Model | None:
@@ -143,8 +144,8 @@ class Description(WrittenHTML):
     `description` (`aria-describedby`); the page hides it from sight (its `stylesheets`).
     `write(description=...)` changes the description."""
 
-    label = param.String(default="")
-    description = param.String(default="")
+    label = param.String(default="", allow_refs=False)
+    description = param.String(default="", allow_refs=False)
 
     _template = '<div id="fig" role="figure"><p id="desc"></p></div>'
     _scripts: ClassVar[dict[str, str]] = dict.fromkeys(
@@ -188,7 +189,7 @@ class TextTable(WrittenHTML):
 
     caption = param.String(default="")
     columns = param.List(default=["Quantity", "Value"], item_type=str)
-    cells = param.String(default="[]", doc="the rows as JSON (`rows`)")
+    cells = param.String(default="[]", allow_refs=False, doc="the rows as JSON (`rows`)")
 
     _template = '<table id="table" class="readout"></table>'
     _scripts: ClassVar[dict[str, str]] = dict.fromkeys(

@@ -34,9 +34,10 @@ import param
 from bokeh.document import Document
 from bokeh.model import Model
 from bokeh.models import TextInput
-from panel.io import hold, unlocked
+from panel.io import unlocked
 from panel.io.state import set_curdoc
 
+from app.kit.batch import held
 from app.kit.jobs import later
 from app.kit.style import FOCUS_RING
 from app.kit.texts import WrittenHTML
@@ -92,7 +93,7 @@ def held_set(obj: param.Parameterized | Model, name: str, value: object) -> None
     """Set `obj.name` to `value` inside `panel.io.hold`: a Bokeh model changed outside
     Panel's handling of a change (a next-tick callback, a watcher of another widget)
     must be, or Bokeh finds its document unlocked."""
-    with hold():
+    with held():
         setattr(obj, name, value)
 
 
@@ -176,9 +177,9 @@ class LabelledSlider(WrittenHTML):
     equal).
     """
 
-    value = param.Number(default=0.0)
-    start = param.Number(default=0.0)
-    end = param.Number(default=1.0)
+    value = param.Number(default=0.0, allow_refs=False)
+    start = param.Number(default=0.0, allow_refs=False)
+    end = param.Number(default=1.0, allow_refs=False)
     step = param.Number(default=0.1)
     label = param.String(default="")
     disabled = param.Boolean(default=False)
@@ -294,7 +295,7 @@ class ExactSlider(pn.viewable.Viewer):
             return
         # everything the move changes (this box, the plots, the readout) goes to the
         # browser in one message
-        with hold():
+        with held():
             self.value = event.new
 
     def follow_browser(self, doc: Document) -> None:
@@ -351,7 +352,7 @@ class ExactSlider(pn.viewable.Viewer):
         self.error = ""
         if v == self.value:
             show_later(self._entry, self.text(v))
-        with hold():
+        with held():
             self.value = v
 
 
@@ -362,7 +363,7 @@ class ExactSlider(pn.viewable.Viewer):
         # own again once the value is back inside (`_show_range` follows)
         lo, hi = self._range
         start, end = min(lo, v), max(hi, v)
-        with hold():  # (the box is a Bokeh model: `held_set`)
+        with held():  # (the box is a Bokeh model: `held_set`)
             if (start, end) != (self.start, self.end):
                 self.param.update(start=start, end=end)
             self._slider.write(value=v)  # (nothing when it holds v: the browser's move)
@@ -385,7 +386,7 @@ class ExactSlider(pn.viewable.Viewer):
 
     @param.depends("disabled", watch=True)
     def _show_disabled(self) -> None:
-        with hold():
+        with held():
             self._slider.disabled = self._entry.disabled = self.disabled
 
 

@@ -18,9 +18,9 @@ from functools import cache, partial
 import numpy as np
 import panel as pn
 from bokeh.models import ColumnDataSource
-from panel.io import hold
 
 import app.methods.data as data
+from app.kit.batch import held
 from app.kit.figures import CURVE_POINTS, fit_range, new_figure, style_figure
 from app.kit.jobs import RUNNER
 from app.kit.widgets import LabelledCheckbox, text_html
@@ -133,7 +133,7 @@ class MethodsScene:
         if first:
             self._build()
         if self._contact is not None:
-            with hold():
+            with held():
                 self.update_contact(self._contact)
             if first:
                 self.run()  # the methods chosen by default, drawn once on opening
@@ -181,7 +181,7 @@ class MethodsScene:
         the progress bar and status end then, whatever the outcome."""
         if request != self._requests:
             return  # a newer run is on its way
-        with hold():
+        with held():
             self.progress.param.update(active=False, visible=False)
             if isinstance(outcome, Exception):
                 self.status.object = text_html(f"⚠ the methods could not run: {outcome}")

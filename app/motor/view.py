@@ -25,12 +25,12 @@ import numpy as np
 import panel as pn
 import param
 from bokeh.events import Tap
-from panel.io import hold
 
 import app.motor.data as data
 import app.motor.downloads as downloads
 import app.motor.plots as plots
 from app.contact import export
+from app.kit.batch import held
 from app.kit.figures import fit_range
 from app.kit.jobs import RUNNER
 from app.kit.widgets import ERROR_STYLE, ExactSlider, LabelledCheckbox, show_later, text_html
@@ -241,7 +241,7 @@ class MotorScene(pn.viewable.Viewer):
         """Show the state: the whole rod (`rod`), the values at x0 (`x0`), and ask the
         runner for the rest."""
         self.motor, self.x0 = self.state.motor()
-        with hold():
+        with held():
             if rod:
                 self._show_rod()
             if x0:
@@ -324,7 +324,7 @@ class MotorScene(pn.viewable.Viewer):
     def _done(self, request: int, outcome: data.Results | Exception) -> None:
         if request != self._requests:
             return  # a newer request is on its way
-        with hold():
+        with held():
             self.progress.param.update(active=False, visible=False)
             if isinstance(outcome, Exception):
                 self.status.object = text_html(f"⚠ could not compute: {outcome}")

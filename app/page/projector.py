@@ -13,8 +13,8 @@ import re
 from collections.abc import Iterator
 
 from bokeh.models import GlyphRenderer, Model
-from panel.io import hold
 
+from app.kit.batch import held
 from app.kit.widgets import LabelledCheckbox
 
 #: How much larger the type is with the projector setting (12 pt tick labels: 18 pt).
@@ -86,7 +86,7 @@ class Projector:
 
     def restyle(self) -> None:
         """Every figure in the setting's style."""
-        with hold():  # (one message)
+        with held():  # (one message)
             for fig in self._figures:
                 self._apply(fig)
 

@@ -100,7 +100,8 @@ class UrlWriter(WrittenHTML):
     send the new address back); a slider drag leaves one history entry, at its end.
     Nothing to see: out of sight, like a live region."""
 
-    query = param.List(default=[], doc="the query's [key, value] pairs, in order")
+    query = param.List(default=[], allow_refs=False,
+                       doc="the query's [key, value] pairs, in order")
     delay_ms = param.Integer(default=400, bounds=(0, None))
 
     _template = '<div id="url"></div>'
