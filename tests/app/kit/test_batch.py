@@ -29,10 +29,16 @@ def counted(entries: list) -> None:
         batch.hold = real
 
 
-def test_held_holds_a_document_that_is_not_held_and_releases_it() -> None:
-    doc, label, events, entries = Document(), Label(x=0, y=0, text="a"), [], []
+def _page() -> tuple[Document, Label, list]:
+    """A document holding one label, and the list its changes are sent to."""
+    doc, label, events = Document(), Label(x=0, y=0, text="a"), []
     doc.add_root(label)
     doc.on_change(events.append)
+    return doc, label, events
+
+
+def test_held_holds_a_document_that_is_not_held_and_releases_it() -> None:
+    (doc, label, events), entries = _page(), []
     with set_curdoc(doc), counted(entries):
         with held():
             label.text = "b"
@@ -44,9 +50,7 @@ def test_held_holds_a_document_that_is_not_held_and_releases_it() -> None:
 
 
 def test_held_inside_a_hold_adds_no_hold_of_its_own() -> None:
-    doc, label, events, entries = Document(), Label(x=0, y=0, text="a"), [], []
-    doc.add_root(label)
-    doc.on_change(events.append)
+    (doc, label, events), entries = _page(), []
     with set_curdoc(doc), counted(entries):
         with held():
             for text in "bcd":
