@@ -182,28 +182,30 @@ class Contact:
         return self._timeline(as_reals(tau, "tau"))
 
     @cached_property
-    def _instants(self) -> dict[tuple, Timeline]:
+    def _instants(self) -> tuple[dict[tuple, Timeline], dict[bytes, dict]]:
         """The Timelines of single times asked so far (at most `INSTANTS`), by the time's
-        shape and bytes; those of one time share their passes (`Timeline.passes`)."""
-        return {}
+        shape and bytes, and the passes (`Timeline.passes`) that those of one time share,
+        by the time's bytes."""
+        return {}, {}
 
     def _timeline(self, tau: NDArray[np.float64]) -> Timeline:
         """``at`` of times already validated.  A view asks for many quantities at one
         time, one method at a time (the phase, the radii, the forces, the pressure and
-        the traction at the time shown): each quantity of one time is computed once."""
+        the traction at the time shown): each quantity of one time is computed once.
+        (Threads may share a contact: every step here is one operation on a dict.)"""
         if tau.size != 1:
             return Timeline(tau, self.psi, self._half_e[0])
-        instants, time = self._instants, tau.tobytes()
-        line = instants.get((tau.shape, time))
+        lines, passes = self._instants
+        time = tau.tobytes()
+        line = lines.get((tau.shape, time))
         if line is None:
-            if len(instants) >= INSTANTS:
-                instants.clear()
+            if len(lines) >= INSTANTS:
+                lines.clear()
+                passes.clear()
             held = np.array(tau, dtype=np.float64)
             held.setflags(write=False)
-            shared = next((other.passes for (_, t), other in instants.items() if t == time),
-                          {})
-            line = instants[tau.shape, time] = Timeline(held, self.psi, self._half_e[0],
-                                                        shared)
+            line = lines[tau.shape, time] = Timeline(held, self.psi, self._half_e[0],
+                                                     passes.setdefault(time, {}))
         return line
 
     def _along(self, tau: ArrayLike, name: str) -> NDArray:

@@ -5,6 +5,7 @@ alone, whatever order they are asked in, and no quantity can be changed in place
 (some are inputs of others)."""
 
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -101,7 +102,40 @@ def test_a_contact_keeps_a_few_single_times() -> None:
     for t in taus:
         np.testing.assert_array_equal(c.at(t).tangential_force, c.at(taus).tangential_force[
             list(taus).index(t)])
-    assert len(c._instants) <= INSTANTS
+    lines, passes = c._instants
+    assert len(lines) <= INSTANTS and len(passes) <= INSTANTS
+
+
+def test_threads_asking_one_contact_at_single_times_get_its_values() -> None:
+    """The Methods worker and the page may ask one contact at once: the kept times are
+    changed by one dict operation at a time, never iterated."""
+    import threading
+
+    c = Contact(2.414, math.pi / 6)
+    taus = np.linspace(0.6, 2.5, 40)
+    expected = c.at(taus).tangential_force
+    errors = []
+
+    def ask(offset: int) -> None:
+        try:
+            for k in range(2000):
+                i = (k * 7 + offset) % taus.size
+                if c.tangential_force(taus[i]).tobytes() != expected[i].tobytes():
+                    errors.append(i)
+        except Exception as err:  # (a dict changed while iterated would land here)
+            errors.append(err)
+
+    threads = [threading.Thread(target=ask, args=(n,)) for n in range(4)]
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(1e-6)  # (threads switch between almost any two steps)
+    try:
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+    finally:
+        sys.setswitchinterval(interval)
+    assert errors == []
 
 
 def test_long_two_dimensional_arrays_give_the_values_of_each_row() -> None:
