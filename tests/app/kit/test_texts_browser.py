@@ -47,9 +47,12 @@ def test_texts_are_text_and_follow_their_model(browser) -> None:
                        "name": "The <b>two</b> spheres", "text": "at τ = 1 rad: T = -0.046 T0"}
         table.rows = [["a", "1"]]
         figure.description = "at τ = 2 rad"
-        got = wait_until(lambda: (g := page.evaluate(JS_READ))["rows"] == [["a", "1"]] and g,
-                         timeout=20, what="the new rows")
-        assert got["text"] == "at τ = 2 rad" and got["scopes"] == ["col", "col", "row"]
+        # (two changes made outside the server's thread: each reaches the page in its
+        # own message, in either order)
+        got = wait_until(lambda: (g := page.evaluate(JS_READ))["rows"] == [["a", "1"]]
+                         and g["text"] == "at τ = 2 rad" and g,
+                         timeout=20, what="the new rows and description")
+        assert got["scopes"] == ["col", "col", "row"] and got["elements"] == 0
     finally:
         page.close()
         server.stop()
