@@ -14,10 +14,13 @@ in ticks of 10 ms, one tick in a 5 s window is 2 ms per s, 1.6 ms per move over 
 closed-form contact (``core.numerics.metrics.closed_form_time(Contact, 0.4, pi/6)``, the
 yardstick of benchmarks/app/app_latency.py and page_load.py, measured before and after
 the run); the websocket messages (PATCH-DOC) the client got per move and their bytes; the
-median time from sending a move to the traction data's arrival.
+median time from sending a move to the traction data's arrival.  With ``--rounds N`` the
+run is made N times, each with fresh server processes (one process's speed differs from
+another's by a few per cent), and the median of the N paired ratios is reported.
 
     .venv/bin/python benchmarks/app/move_cost.py
     .venv/bin/python benchmarks/app/move_cost.py --revs 1c3d2f1 HEAD --moves 150
+    .venv/bin/python benchmarks/app/move_cost.py --revs 1c3d2f1 HEAD --moves 100 --rounds 3
 
 Loopback only; every request has a timeout.
 """
@@ -149,6 +152,34 @@ async def run(arms: list[Arm], moves: int, interval: float, warmup: int,
         a.session.close()
 
 
+def report(arms: list[Arm], moves: int, unit: float) -> dict:
+    """Each arm's figures (printed, and returned by arm name)."""
+    rows = {}
+    for a in arms:
+        per_move = a.cpu / moves
+        lat = statistics.median(a.stats.latencies) * 1e3 if a.stats.latencies else float("nan")
+        row = {"cpu_ms_per_move": round(per_move * 1e3, 2),
+               "raw_cpu_ms_per_move": round(a.raw_cpu / moves * 1e3, 2),
+               "closed_form_contacts_per_move": round(per_move * 1e6 / unit),
+               "messages_per_move": round(a.messages / moves, 2),
+               "bytes_per_move": round(a.bytes / moves),
+               "median_reply_ms": round(lat, 1), "errors": a.stats.errors,
+               "idle_cpu_ms_per_s": round(a.idle_cpu_per_s * 1e3, 2)}
+        rows[a.name] = row
+        print(f"  {a.name}: {row['cpu_ms_per_move']} ms CPU per move = "
+              f"{row['closed_form_contacts_per_move']} closed-form contacts "
+              f"({row['raw_cpu_ms_per_move']} ms without the idle correction); "
+              f"{row['messages_per_move']} messages, {row['bytes_per_move']} bytes per move; "
+              f"reply median {row['median_reply_ms']} ms; errors {row['errors']}; "
+              f"idle {row['idle_cpu_ms_per_s']} ms of CPU per s")
+    if len(arms) == 2:
+        (a, ra), (b, rb) = ((rows[x.name]["cpu_ms_per_move"], rows[x.name]["raw_cpu_ms_per_move"])
+                            for x in arms)
+        print(f"  {arms[1].name} / {arms[0].name}: {b / a:.2f} of the CPU per move "
+              f"({rb / ra:.2f} without the idle correction)")
+    return rows
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--moves", type=int, default=100)
@@ -157,42 +188,34 @@ def main() -> int:
     ap.add_argument("--idle", type=float, default=20.0,
                     help="s of idle CPU measured per arm before the moves")
     ap.add_argument("--revs", nargs=2, metavar=("A", "B"))
+    ap.add_argument("--rounds", type=int, default=1,
+                    help="runs, each with fresh server processes (a process's own speed "
+                         "varies by a few per cent); with two arms the ratios' median too")
     ap.add_argument("--json", type=Path, help="also write the figures here")
     args = ap.parse_args()
     before = yardstick()
-    with contextlib.ExitStack() as stack:
-        roots = ({rev: stack.enter_context(worktree(rev)) for rev in args.revs} if args.revs
+    out = {"yardstick_us": [round(before, 2)], "moves": args.moves, "rounds": []}
+    with contextlib.ExitStack() as trees:
+        roots = ({rev: trees.enter_context(worktree(rev)) for rev in args.revs} if args.revs
                  else {"working tree": None})
-        arms = [Arm(k, stack.enter_context(explorer_server(root, timeout=900)))
-                for k, root in roots.items()]
-        asyncio.run(run(arms, args.moves, args.interval, args.warmup, args.idle))
-    after = yardstick()
-    unit = statistics.mean((before, after))
-    out = {"yardstick_us": [round(before, 2), round(after, 2)], "moves": args.moves, "arms": {}}
-    print(f"{args.moves} psi moves per arm, one every {args.interval:g} s, arms alternating; "
-          f"yardstick (one closed-form contact) {before:.1f} us before, {after:.1f} us after")
-    for a in arms:
-        per_move = a.cpu / args.moves
-        lat = statistics.median(a.stats.latencies) * 1e3 if a.stats.latencies else float("nan")
-        row = {"cpu_ms_per_move": round(per_move * 1e3, 2),
-               "raw_cpu_ms_per_move": round(a.raw_cpu / args.moves * 1e3, 2),
-               "closed_form_contacts_per_move": round(per_move * 1e6 / unit),
-               "messages_per_move": round(a.messages / args.moves, 2),
-               "bytes_per_move": round(a.bytes / args.moves),
-               "median_reply_ms": round(lat, 1), "errors": a.stats.errors,
-               "idle_cpu_ms_per_s": round(a.idle_cpu_per_s * 1e3, 2)}
-        out["arms"][a.name] = row
-        print(f"  {a.name}: {row['cpu_ms_per_move']} ms CPU per move = "
-              f"{row['closed_form_contacts_per_move']} closed-form contacts "
-              f"({row['raw_cpu_ms_per_move']} ms without the idle correction); "
-              f"{row['messages_per_move']} messages, {row['bytes_per_move']} bytes per move; "
-              f"reply median {row['median_reply_ms']} ms; errors {row['errors']}; "
-              f"idle {row['idle_cpu_ms_per_s']} ms of CPU per s")
-    if len(arms) == 2:
-        a, b = (out["arms"][x.name]["cpu_ms_per_move"] for x in arms)
-        ra, rb = (out["arms"][x.name]["raw_cpu_ms_per_move"] for x in arms)
-        print(f"  {arms[1].name} / {arms[0].name}: {b / a:.2f} of the CPU per move "
-              f"({rb / ra:.2f} without the idle correction)")
+        for k in range(args.rounds):
+            with contextlib.ExitStack() as servers:
+                arms = [Arm(name, servers.enter_context(explorer_server(root, timeout=900)))
+                        for name, root in roots.items()]
+                asyncio.run(run(arms, args.moves, args.interval, args.warmup, args.idle))
+            after = yardstick()
+            print(f"{'' if args.rounds == 1 else f'round {k + 1}: '}{args.moves} psi moves per "
+                  f"arm, one every {args.interval:g} s, arms alternating; yardstick (one "
+                  f"closed-form contact) {before:.1f} us before, {after:.1f} us after")
+            out["rounds"].append(report(arms, args.moves, statistics.mean((before, after))))
+            out["yardstick_us"].append(round(after, 2))
+            before = after
+    if args.rounds > 1 and len(roots) == 2:
+        a, b = roots
+        ratios = [r[b]["cpu_ms_per_move"] / r[a]["cpu_ms_per_move"] for r in out["rounds"]]
+        out["ratios"] = [round(x, 3) for x in ratios]
+        print(f"{b} / {a} over {args.rounds} rounds: median {statistics.median(ratios):.2f} "
+              f"(each: {', '.join(f'{x:.2f}' for x in ratios)})")
     if args.json:
         args.json.write_text(json.dumps(out, indent=1))
     return 0
