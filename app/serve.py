@@ -263,12 +263,12 @@ def server_options(args: argparse.Namespace) -> dict:
 def size_limits(class_size: int) -> None:
     """Size this process's page limits per client address for `class_size` visitors
     behind one address opening the page at once: that many page builds at once
-    (`app.page.guard.BUILDS`) and `PAGES_PER_VISITOR` times as many page loads
+    (`app.page.guard.BUILDS`) and `app.page.gate.pages_burst` page loads
     (`app.page.gate.PAGES`); their rates stay."""
     from app.page import gate, guard
 
     guard.BUILDS.burst = float(class_size)
-    gate.PAGES.burst = float(gate.PAGES_PER_VISITOR * class_size)
+    gate.PAGES.burst = gate.pages_burst(class_size)
 
 
 def applications() -> dict:

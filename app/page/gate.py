@@ -30,9 +30,15 @@ from app.page.bucket import CLASS_SIZE, AddressLimit
 #: reload, one to spare.
 PAGES_PER_VISITOR = 3
 
+
+def pages_burst(class_size: int) -> float:
+    """The page loads at once per address for a class of `class_size` behind it."""
+    return float(PAGES_PER_VISITOR * class_size)
+
+
 #: The page loads of this server process, per client address: 120 at once (a class of
-#: `CLASS_SIZE`, `PAGES_PER_VISITOR` each), then one a second.
-PAGES = AddressLimit(burst=float(PAGES_PER_VISITOR * CLASS_SIZE), rate=1.0)
+#: `CLASS_SIZE`, `pages_burst`), then one a second.
+PAGES = AddressLimit(burst=pages_burst(CLASS_SIZE), rate=1.0)
 
 #: The explorer's own path, below the server's prefix (the only page `BusyPage` sends to).
 APP_PATH = "/main"
