@@ -90,7 +90,7 @@ def show_later(widget: param.Parameterized | Model, value: object) -> None:
 
 
 def held_set(obj: param.Parameterized | Model, name: str, value: object) -> None:
-    """Set `obj.name` to `value` inside `panel.io.hold`: a Bokeh model changed outside
+    """Set `obj.name` to `value` inside `held` (Panel's hold): a Bokeh model changed outside
     Panel's handling of a change (a next-tick callback, a watcher of another widget)
     must be, or Bokeh finds its document unlocked."""
     with held():
