@@ -81,7 +81,7 @@ class Controls:
             widget = ExactSlider(label=label, value=getattr(state, name), start=start,
                                  end=end, step=step, parse=partial(parse_value, name),
                                  name=name, direct=True)
-            bind(widget, state.param[name])
+            bind(widget, state.param[name], state.set_input)
             setattr(self, f"{name}_slider", widget)
         self.drive_select = pn.widgets.RadioButtonGroup(
             label="Set the drive by", options=DRIVE_OPTIONS, value=state.drive,
@@ -93,7 +93,7 @@ class Controls:
         self.theta_slider = ExactSlider(
             label="θ (°): drive angle, tan θ = u₀/H", value=state.theta, start=0.0, end=89.5,
             step=0.1, parse=partial(parse_value, "theta"), name="theta", direct=True)
-        bind(self.theta_slider, state.param.theta)
+        bind(self.theta_slider, state.param.theta, state.set_input)
         self.drive_note = pn.pane.HTML("", sizing_mode="stretch_width", styles=NOTE_STYLE,
                                        name="drive_note")
         c = state.contact()
@@ -101,7 +101,7 @@ class Controls:
             label="τ = ωt (rad): time", value=state.tau, start=c.tau0, end=c.tau_end,
             step=0.002, parse=lambda text: parse_tau(text, view.shown), name="tau",
             direct=True)
-        follow(self.tau_slider, state.param.tau)
+        follow(self.tau_slider, state.param.tau, state.set_input)
         self.play_button = PlayButton(width=110)  # (the keyboard stays on it)
         self.play_button.param.watch(
             lambda _: view.animation.press(self.play_button.shown), "clicks")

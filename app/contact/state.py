@@ -175,14 +175,56 @@ class ExplorerState(param.Parameterized):
     h = param.Number(default=1e-6, **bounds("h"), doc="gap at t = 0 (m), |h| < H")
     omega = param.Number(default=2 * math.pi * 40e3, **bounds("omega"), doc="rad/s")
 
+    def __init__(self, **params) -> None:
+        super().__init__(**params)
+        self._last_contact: tuple[tuple, Contact] | None = None
+
     def contact(self) -> Contact:
         """The `core.Contact` the current parameters define: from the SI inputs, or from
         the drive's angle theta (drive = 'angle'), or from psi; ValueError if core
-        refuses it."""
+        refuses it.  The same parameters give the same object (the last one is kept:
+        a move asks for it more than once, and a Contact keeps what it computed)."""
         if self.physical:
-            return Contact.from_physical(R=self.R, G=self.G, nu=self.nu, mu=self.mu, H=self.H,
-                                         u0=self.u0, h=self.h, omega=self.omega)
-        return Contact(self.drive_psi(), self.tau0, mu=self.mu, nu=self.nu)
+            key: tuple = (True, self.R, self.G, self.nu, self.mu, self.H, self.u0, self.h,
+                          self.omega)
+        else:
+            key = (False, self.drive_psi(), self.tau0, self.mu, self.nu)
+        last = self._last_contact
+        if last is not None and last[0] == key:
+            return last[1]
+        if self.physical:
+            c = Contact.from_physical(R=self.R, G=self.G, nu=self.nu, mu=self.mu, H=self.H,
+                                      u0=self.u0, h=self.h, omega=self.omega)
+        else:
+            c = Contact(key[1], self.tau0, mu=self.mu, nu=self.nu)
+        self._last_contact = (key, c)
+        return c
+
+    def corrections(self, c: Contact) -> dict[str, float]:
+        """What the state must change for its values to be those of contact `c` (its
+        `contact()`), each that differs: with SI inputs psi and tau0 follow from them;
+        with drive = 'angle' psi follows from theta, mu and nu, else theta (degrees)
+        from psi, mu and nu (eq 23); tau is kept inside the contact."""
+        fixes = {"psi": c.psi, "tau0": c.tau0} if self.physical else {"psi": c.psi}
+        if self.physical or self.drive == "psi":
+            fixes["theta"] = drive_angle(c.psi, self.mu, self.nu)
+        fixes["tau"] = min(max(self.tau, c.tau0), c.tau_end)
+        return {k: v for k, v in fixes.items() if getattr(self, k) != v}
+
+    def set_input(self, name: str, value: object) -> None:
+        """Set parameter `name` to `value` and, in the same batch of watchers, what
+        follows from it (`corrections`): each watcher is called once, on the corrected
+        state (a slider's move, one pass of the view).  ValueError, nothing changed, if
+        the parameter refuses `value`; a combination core refuses is set uncorrected
+        (the view says why)."""
+        with param.parameterized.batch_call_watchers(self):
+            setattr(self, name, value)
+            try:
+                fixes = self.corrections(self.contact())
+            except ValueError:
+                return
+            for k, v in fixes.items():
+                setattr(self, k, v)
 
     def drive_psi(self) -> float:
         """The psi of the drive: the state's own, or with drive = 'angle' the one theta,

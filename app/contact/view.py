@@ -37,7 +37,7 @@ from app.contact.notes import NOTES
 from app.contact.player import Player
 from app.contact.readout import Readout
 from app.contact.spheres import SpheresScene
-from app.contact.state import PRESETS, SI_KEYS, ExplorerState, drive_angle
+from app.contact.state import PRESETS, SI_KEYS, ExplorerState
 from app.contact.traction import DiscScene, TractionScene
 from app.kit.batch import held
 from app.kit.figures import Scene
@@ -118,11 +118,7 @@ class ContactView(param.Parameterized):
             if s.physical or s.drive == "angle":
                 return
             raise
-        fixes = {"psi": c.psi, "tau0": c.tau0} if s.physical else {"psi": c.psi}
-        if s.physical or s.drive == "psi":
-            fixes["theta"] = drive_angle(c.psi, s.mu, s.nu)
-        fixes["tau"] = min(max(s.tau, c.tau0), c.tau_end)
-        fixes = {k: v for k, v in fixes.items() if getattr(s, k) != v}
+        fixes = s.corrections(c)
         if fixes:  # set in one batch of watchers, which calls this again (not with
             # `param.update`, which reads every parameter of the state first)
             with param.parameterized.batch_call_watchers(s):

@@ -48,19 +48,22 @@ log = logging.getLogger(__name__)
 ERROR_STYLE = {"color": "#a4161a", "font-size": "0.9em", "margin-top": "0"}
 
 
-def follow(widget: param.Parameterized, parameter: param.Parameter) -> None:
+def follow(widget: param.Parameterized, parameter: param.Parameter,
+           setter: Callable[[str, object], None] | None = None) -> None:
     """Set `parameter` (of a Parameterized instance, e.g. `state.param.psi`) to each new
-    `widget.value`.
+    `widget.value`: with `setter(name, value)` if given (e.g. `ExplorerState.set_input`,
+    which sets what follows from the value in the same batch), else `setattr`.
 
     A widget value the parameter refuses (one no browser sends: NaN, or outside its
     bounds, from a script) changes nothing: the widget shows the parameter's value
     again, and the refusal is logged at debug level only (a client cannot fill the log).
     """
     owner, name = parameter.owner, parameter.name
+    put = setter or partial(setattr, owner)
 
     def to_owner(event: param.parameterized.Event) -> None:
         try:
-            setattr(owner, name, event.new)
+            put(name, event.new)
         except ValueError as err:
             log.debug("refused %s = %.80r from the browser: %s", name, event.new, err)
             show_later(widget, getattr(owner, name))
@@ -68,10 +71,11 @@ def follow(widget: param.Parameterized, parameter: param.Parameter) -> None:
     widget.param.watch(to_owner, "value")
 
 
-def bind(widget: param.Parameterized, parameter: param.Parameter) -> None:
+def bind(widget: param.Parameterized, parameter: param.Parameter,
+         setter: Callable[[str, object], None] | None = None) -> None:
     """Keep `widget.value` and `parameter` equal, whichever of the two changes (the
-    widget's values as `follow` takes them)."""
-    follow(widget, parameter)
+    widget's values as `follow` takes them, with `setter` if given)."""
+    follow(widget, parameter, setter)
     owner, name = parameter.owner, parameter.name
     owner.param.watch(lambda e: setattr(widget, "value", e.new), name)
 
