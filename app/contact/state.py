@@ -217,6 +217,8 @@ class ExplorerState(param.Parameterized):
         state (a slider's move, one pass of the view).  ValueError, nothing changed, if
         the parameter refuses `value`; a combination core refuses is set uncorrected
         (the view says why)."""
+        if getattr(self, name) == value:
+            return  # (a widget following the state: its value is the state's)
         with param.parameterized.batch_call_watchers(self):
             setattr(self, name, value)
             try:

@@ -83,3 +83,26 @@ def test_spheres_apart_in_the_gap() -> None:
     assert marker["x"] == [float(spheres.strip_x(ex.state.tau))]
     shaded = ex.contact.spheres.period_contact.data["x"]
     assert min(shaded) == float(spheres.strip_x(c.tau0))
+
+
+def test_a_slider_move_and_what_follows_from_it_are_one_batch() -> None:
+    """A move of the psi slider sets psi and theta (eq 23) together: every watcher of
+    the state is called once, and sees the corrected state; a move of the tau0 slider
+    clamps tau into the new contact in the same batch."""
+    ex = Explorer()
+    s = ex.state
+    seen: list[tuple] = []
+    s.param.watch(lambda *events: seen.append(
+        (tuple(sorted(e.name for e in events)), s.psi, s.theta, s.tau)),
+        ["psi", "theta", "tau", "tau0"])
+    ex.contact.controls.psi_slider.value = 3.0
+    assert seen == [(("psi", "theta"), 3.0, drive_angle(3.0, s.mu, s.nu), s.tau)]
+    assert s.contact() is ex.contact.shown  # (the state keeps the contact it made)
+    seen.clear()
+    s.tau = 2.5
+    seen.clear()
+    ex.contact.controls.tau0_slider.value = 1.0  # tau = 2.5 is past the end pi - 1
+    assert seen == [(("tau", "tau0"), 3.0, s.theta, math.pi - 1.0)]
+    seen.clear()
+    ex.contact.controls.theta_slider.value = s.theta  # (a widget following the state)
+    assert seen == []
