@@ -3,7 +3,7 @@
 `ContactView` shows an `ExplorerState` (what the user set) in the scenes (what is shown).
 The path from a slider to a plot is short (docs/app.md, "How data flows"):
 
-    ExactSlider.value  --bind-->  ExplorerState.psi  --param.depends-->  show_state
+    ExactSlider.value  --bind, set_input-->  ExplorerState.psi  --param.depends-->  show_state
       -> ContactView.refresh -> TractionScene.update_tau -> source.data (core's numbers)
 
 `show_state` depends on every input of the contact and on tau: it rebuilds the
