@@ -9,12 +9,16 @@ are not deferred, which BokehJS always gunzips), so the whole update is one mess
 three frames; the browser decodes the same float64 bytes, so the values it plots are
 bit for bit those computed here.
 
-The gzip stream is stored, not compressed (`COMPRESSION_LEVEL` 0): float64 curves hardly
-compress, and compressing them costs server CPU on every move.  Measured on the
-columns of one psi move (T(τ) and the traction profile, 21.9 kB of float64): Bokeh's
-default level 2 takes 0.42-0.47 ms for 24.1-24.4 kB of base64, level 0 takes 0.05 ms
-for 29.5 kB (+21 % bytes, -0.4 ms of server CPU per move;
-`python benchmarks/wire_cost.py`).
+The gzip stream is stored, not compressed: float64 curves hardly compress, and
+compressing them costs server CPU on every move.  Measured on the columns of one psi
+move (T(τ) and the traction profile, 21.9 kB of float64): Bokeh's default level 2 takes
+0.42-0.47 ms for 24.1-24.4 kB of base64, level 0 takes 0.05 ms for 29.5 kB (+21 %
+bytes, -0.4 ms of server CPU per move; `python benchmarks/app/wire_cost.py`).  The
+stored stream is written here (`stored_gzip`: the gzip header, the bytes in stored
+deflate blocks, their CRC-32 and length; RFCs 1951 and 1952) without setting up a
+compressor for each column (zlib allocates ~256 kB of state per call); for a column of
+up to 8,000 floats it is byte for byte what `gzip.compress(data, compresslevel=0,
+mtime=1)` gives (zlib cuts longer data into blocks of other sizes).
 
 Measured (paired A/B runs, two servers, moves alternated, 30 per arm): a psi move to
 all plots updated 118 -> 106, 128 -> 113 and 110 -> 103 ms median in three runs.
@@ -25,23 +29,41 @@ is a third larger.
 from __future__ import annotations
 
 import base64
-import gzip
+import struct
 import sys
+import zlib
 from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 from bokeh.core.serialization import NDArrayRep, Serializable, Serializer
 
-#: gzip level of the inline columns (0: stored; Bokeh's own default is 2).
-COMPRESSION_LEVEL = 0
+#: The gzip header of `stored_gzip`: magic, deflate, no flags, mtime 1 (fixed, as Bokeh's
+#: for equal output), no extra flags, OS unknown (255): what `gzip.compress` writes.
+GZIP_HEADER = b"\x1f\x8b\x08\x00\x01\x00\x00\x00\x00\xff"
+#: The most bytes of one stored deflate block (RFC 1951, 3.2.4).
+STORED_BLOCK = 0xFFFF
+
+
+def stored_gzip(data: bytes) -> bytes:
+    """`data` as a gzip stream of stored (uncompressed) deflate blocks: the header, each
+    block's final flag, length and its one's complement, then the CRC-32 and the
+    length of `data` modulo 2**32 (RFC 1952).  Up to 64,000 bytes, byte for byte
+    `gzip.compress(data, compresslevel=0, mtime=1)`."""
+    n = len(data)
+    parts = [GZIP_HEADER]
+    for start in range(0, n, STORED_BLOCK) if n else [0]:
+        size = min(STORED_BLOCK, n - start)
+        parts.append(struct.pack("<BHH", start + size >= n, size, size ^ 0xFFFF))
+        parts.append(data[start:start + size])
+    parts.append(struct.pack("<II", zlib.crc32(data), n & 0xFFFFFFFF))
+    return b"".join(parts)
 
 
 def encode(data: np.ndarray) -> str:
     """The bytes of a contiguous array as BokehJS decodes an inline buffer: base64 of a
-    gzip stream (at `COMPRESSION_LEVEL`; mtime fixed, as Bokeh does, for equal output)."""
-    return base64.b64encode(gzip.compress(data.tobytes(), compresslevel=COMPRESSION_LEVEL,
-                                          mtime=1)).decode("ascii")
+    gzip stream (`stored_gzip`)."""
+    return base64.b64encode(stored_gzip(data.tobytes())).decode("ascii")
 
 
 class InlineColumn(np.ndarray, Serializable):

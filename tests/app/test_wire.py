@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import gzip
+
 import numpy as np
 import pytest
 from bokeh.core.serialization import Deserializer, Serializer
@@ -9,7 +11,7 @@ from bokeh.document import Document
 from bokeh.models import ColumnDataSource
 from bokeh.protocol import Protocol
 
-from app.kit.wire import InlineColumn, inline
+from app.kit.wire import STORED_BLOCK, InlineColumn, inline, stored_gzip
 from app.page.explorer import Explorer
 
 #: Values that a lossy or text encoding would change.
@@ -26,6 +28,17 @@ def test_an_inline_column_decodes_to_the_same_bits() -> None:
     out = roundtrip(AWKWARD)
     assert out.dtype == np.float64
     assert out.tobytes() == AWKWARD.tobytes()
+
+
+@pytest.mark.parametrize("size", [0, 1, 8, 3600, STORED_BLOCK - 1, STORED_BLOCK,
+                                  STORED_BLOCK + 1, 2 * STORED_BLOCK, 2 * STORED_BLOCK + 7])
+def test_the_stored_gzip_stream_reads_back_and_is_gzips_own_up_to_64000_bytes(
+        size: int) -> None:
+    data = np.random.default_rng(size).bytes(size)
+    out = stored_gzip(data)
+    assert gzip.decompress(out) == data
+    if size <= 64000:
+        assert out == gzip.compress(data, compresslevel=0, mtime=1)
 
 
 def test_inline_takes_numeric_1d_arrays_and_leaves_the_rest() -> None:
