@@ -6,12 +6,14 @@ from __future__ import annotations
 
 import math
 from functools import cached_property
+from typing import ClassVar
 
 import numpy as np
 from bokeh.layouts import column
 from bokeh.models import (
     CDSView,
     ColumnDataSource,
+    CustomJSTransform,
     GlyphRenderer,
     IndexFilter,
     Label,
@@ -21,6 +23,7 @@ from bokeh.models import (
     Segment,
     Text,
 )
+from bokeh.transform import transform
 
 from app.kit.changes import show
 from app.kit.figures import (
@@ -42,6 +45,10 @@ from core import Contact
 #: comes close to pi - tau0 for psi near 1 and to pi/2 for large psi.
 LANDMARK_DY, TAU1_DY = 2, 18
 
+#: JavaScript of a `CustomJSTransform`: each value negated (a mirrored curve is drawn by
+#: the browser from the column it mirrors, which alone is sent).
+NEGATED_JS = "return xs.map((x) => -x)"
+
 
 def place_stamp(label: Label, fig) -> None:
     """Put `label` at the top left corner of `fig`'s ranges (unless it is there)."""
@@ -54,10 +61,14 @@ class CurveScene(Scene):
     """A scene of curves over tau with markers (and a vertical line) at the current tau.
 
     Subclasses list their curves as (column, legend, colour, dash) in `curves` and
-    implement `columns(c, tau)` returning each column's values.
+    implement `columns(c, tau)` returning each column's values.  A curve named in
+    `mirrors` is the negative of another column: it is not sent, the browser draws it
+    negated (its marker, its range and the CSV use its values from `columns`).
     """
 
     curves: tuple[tuple[str, str, str, str], ...] = ()
+    #: the curves drawn as the negative of another column: {curve: column}
+    mirrors: ClassVar[dict[str, str]] = {}
     title = ""
     y_label = ""
     #: the plot's panels, one above the other on a shared time axis: (title, y label,
@@ -65,7 +76,8 @@ class CurveScene(Scene):
     panels: tuple[tuple[str, str, tuple[str, ...]], ...] = ()
 
     def __init__(self) -> None:
-        super().__init__({"tau": [], **{col: [] for col, *_ in self.curves}})
+        super().__init__({"tau": [], **{col: [] for col, *_ in self.curves
+                                        if col not in self.mirrors}})
         self.marker = ColumnDataSource({"x": [], "y": [], "color": [], "lo": [], "hi": []},
                                        name=f"{self.name}_marker")
         #: the paper's landmarks on the time axis: tau0, pi/2, tau1 (psi > 1), pi - tau0
@@ -110,8 +122,9 @@ class CurveScene(Scene):
                  text_baseline="top", text_font_size="12pt", text_color="#555555",
                  y_offset="dy")
             drawn = [(c, lb, color, dash) for c, lb, color, dash in self.curves if c in cols]
-            lines = [draw(fig, Line, self.source, x="tau", y=col, color=color, line_width=3,
-                          line_dash=dash, level=DATA_LEVEL, name=f"{self.name}_{col}")
+            lines = [draw(fig, Line, self.source, x="tau", y=self._y_spec(col), color=color,
+                          line_width=3, line_dash=dash, level=DATA_LEVEL,
+                          name=f"{self.name}_{col}")
                      for col, _, color, dash in drawn]
             # the curves are drawn above the legend's level, so the legend goes outside
             # the frame: in one row above it (beside it, it left a phone a narrow frame)
@@ -139,6 +152,12 @@ class CurveScene(Scene):
             figs.append(fig)
         return figs
 
+    def _y_spec(self, col: str):
+        """What a curve's line draws: its column, or the column it mirrors negated."""
+        if col in self.mirrors:
+            return transform(self.mirrors[col], CustomJSTransform(v_func=NEGATED_JS))
+        return col
+
     def _y_range(self, col: str) -> Range1d:
         """The y range of the panel drawing column `col`."""
         for (_, _, cols), fig in zip(self._panels(), self.figures, strict=True):
@@ -157,7 +176,8 @@ class CurveScene(Scene):
     def update_contact(self, c: Contact) -> None:
         tau = self.grid(c)
         columns = self.columns(c, tau)
-        show(self.source, {"tau": tau, **columns})
+        show(self.source, {"tau": tau, **{k: v for k, v in columns.items()
+                                          if k not in self.mirrors}})
         fit_range(self.figures[0].x_range, tau, pad=0.02)
         marks = [(c.tau0, "τ₀"), (math.pi / 2, "π/2"), (c.tau1, "τ₁"), (c.tau_end, "π−τ₀")]
         marks = [(x, label) for x, label in marks if not math.isnan(x)]
@@ -197,6 +217,7 @@ class ForceScene(CurveScene):
         ("muP", "±μP / T₀", "#999999", "dashed"),
         ("neg_muP", "±μP / T₀", "#999999", "dashed"),
     )
+    mirrors: ClassVar[dict[str, str]] = {"neg_muP": "muP"}
 
     def __init__(self) -> None:
         super().__init__()
@@ -221,7 +242,7 @@ class ForceScene(CurveScene):
         Coulomb bounds +-mu P/T0 = +-P/P0 (eq 9)."""
         d = {k: np.asarray(v) for k, v in self.source.data.items()}
         return {"tau (rad)": d["tau"], "T/T0": d["T"], "mu P/T0": d["muP"],
-                "-mu P/T0": d["neg_muP"]}
+                "-mu P/T0": -d["muP"]}
 
     def set_family(self, contacts: list[Contact]) -> None:
         """Overlay T / T0 of further contacts (the paper's Fig. 7 families).

@@ -408,6 +408,32 @@ def test_one_legend_entry_hides_both_coulomb_bounds(browser, url) -> None:
     page.close()
 
 
+#: JavaScript: the lower Coulomb bound's line as painted (its y after the browser's
+#: transform) and the muP column it is drawn from.
+JS_LOWER_BOUND = """() => {
+  const v = __views((v) => v.model != null && v.model.name === "force_neg_muP")[0];
+  return {painted: Array.from(v.glyph.y), muP: __col("force", "muP")};
+}"""
+
+
+def test_the_lower_coulomb_bound_is_painted_as_minus_mu_p(browser, url) -> None:
+    """-muP / T0 is not sent: the browser draws it from the muP column, negated
+    (`CurveScene.mirrors`), before and after a move changes the curves' grid."""
+    page, console = open_explorer(browser, url)
+    page.wait_for_function("() => (__col('force', 'muP') || []).length > 0", timeout=20_000)
+    for _ in range(2):
+        bound = page.evaluate(JS_LOWER_BOUND)
+        assert len(bound["muP"]) > 300
+        assert bound["painted"] == [-x for x in bound["muP"]]
+        muP = bound["muP"]
+        step_psi(page)  # (psi moves tau1, so the grid and the muP column change)
+        page.wait_for_function(
+            "(b) => JSON.stringify(__col('force', 'muP')) !== JSON.stringify(b)", arg=muP,
+            timeout=20_000)
+    assert errors(console) == []
+    page.close()
+
+
 #: The page box of the traction plot and the phase its label names.
 JS_TRACTION_BOX = """() => {
   const v = __views((v) => v.model != null && v.model.type === "Figure"
