@@ -13,7 +13,6 @@ from bokeh.layouts import column
 from bokeh.models import (
     CDSView,
     ColumnDataSource,
-    CustomJSTransform,
     GlyphRenderer,
     IndexFilter,
     Label,
@@ -23,7 +22,6 @@ from bokeh.models import (
     Segment,
     Text,
 )
-from bokeh.transform import transform
 
 from app.kit.changes import show
 from app.kit.figures import (
@@ -35,6 +33,7 @@ from app.kit.figures import (
     draw,
     fit_range,
     lean,
+    negated,
     new_figure,
     stamp,
     style_figure,
@@ -44,10 +43,6 @@ from core import Contact
 #: The landmark labels' offset below the frame's top (px), and tau1's, a line lower: it
 #: comes close to pi - tau0 for psi near 1 and to pi/2 for large psi.
 LANDMARK_DY, TAU1_DY = 2, 18
-
-#: JavaScript of a `CustomJSTransform`: each value negated (a mirrored curve is drawn by
-#: the browser from the column it mirrors, which alone is sent).
-NEGATED_JS = "return xs.map((x) => -x)"
 
 
 def place_stamp(label: Label, fig) -> None:
@@ -155,7 +150,7 @@ class CurveScene(Scene):
     def _y_spec(self, col: str):
         """What a curve's line draws: its column, or the column it mirrors negated."""
         if col in self.mirrors:
-            return transform(self.mirrors[col], CustomJSTransform(v_func=NEGATED_JS))
+            return negated(self.mirrors[col])
         return col
 
     def _y_range(self, col: str) -> Range1d:

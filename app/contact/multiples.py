@@ -18,7 +18,7 @@ from bokeh.models import ColumnDataSource
 from app.contact.phases import STICK_COLOR, style
 from app.contact.state import PRESETS
 from app.contact.traction import TractionScene
-from app.kit.figures import new_figure, style_figure
+from app.kit.figures import negated, new_figure, style_figure
 from core import Contact
 
 #: The presets of Fig. 6, in the paper's order.
@@ -54,10 +54,10 @@ class SmallMultiples:
                              min_width=220, x_range=self.traction.figure.x_range.clone(),
                              y_range=self.traction.figure.y_range.clone())
             source = self.sources[key]
-            fig.varea("r", "stick_lo", "stick_hi", source=source, fill_color=STICK_COLOR,
-                      fill_alpha=0.25)
-            for col in ("upper", "lower"):
-                fig.line("r", col, source=source, line_dash="dashed", color="grey",
+            fig.varea(x="r", y1=negated("stick_hi"), y2="stick_hi", source=source,
+                      fill_color=STICK_COLOR, fill_alpha=0.25)
+            for y in ("upper", negated("upper")):
+                fig.line(x="r", y=y, source=source, line_dash="dashed", color="grey",
                          line_width=1.5)
             fig.line("r", "traction", source=source, color="black", line_width=2.5)
             style_figure(fig)

@@ -24,11 +24,16 @@ from app.kit.figures import (
     Scene,
     add_legend,
     draw,
+    negated,
     new_figure,
     stamp,
     style_figure,
 )
 from core import Contact
+
+#: The traction profile's columns (`TractionScene.profiles`), as the browser's player
+#: copies them frame by frame (`app/contact/player.js`).
+PROFILE_COLUMNS = ("r", "traction", "upper", "stick_hi")
 
 
 class TractionScene(Scene):
@@ -37,14 +42,14 @@ class TractionScene(Scene):
     name = "traction"
 
     def __init__(self) -> None:
-        super().__init__({k: [] for k in ("r", "traction", "upper", "lower", "stick_lo",
-                                          "stick_hi")})
+        super().__init__({k: [] for k in PROFILE_COLUMNS})
         fig = new_figure("Traction profile", "r / a*", "traction  τᵤ / (μ p*)", height=390)
-        stick = draw(fig, VArea, self.source, x="r", y1="stick_lo", y2="stick_hi",
+        # (the lower halves, -p and -stick_hi, the browser draws from the upper ones)
+        stick = draw(fig, VArea, self.source, x="r", y1=negated("stick_hi"), y2="stick_hi",
                      fill_color=STICK_COLOR, fill_alpha=0.25, level=DATA_LEVEL)
-        envelope = [draw(fig, Line, self.source, x="r", y=col, line_dash="dashed",
+        envelope = [draw(fig, Line, self.source, x="r", y=y, line_dash="dashed",
                          color="grey", line_width=2, level=DATA_LEVEL)
-                    for col in ("upper", "lower")]
+                    for y in ("upper", negated("upper"))]
         self.line = draw(fig, Line, self.source, x="r", y="traction", color="black",
                          line_width=3, level=DATA_LEVEL)
         # in one row above the frame (inside it, it covered the stick zone and the rim;
@@ -94,7 +99,10 @@ class TractionScene(Scene):
 
         Each row is the r grid with -a, a, -b, b inserted (sharp corners at the contact
         and stick edges), so every frame has the same length L and the browser's player
-        can copy frames into the plotted arrays in place.
+        can copy frames into the plotted arrays in place.  The columns (`PROFILE_COLUMNS`):
+        r, the traction, the envelope p (the Coulomb bound mu p in units of mu p*) and
+        p inside the stick disc (0 outside); the plots draw -p and the stick zone's
+        lower edge negated, in the browser.
         """
         taus = np.atleast_1d(np.asarray(taus, float))
         line = c.at(taus)
@@ -104,8 +112,8 @@ class TractionScene(Scene):
         t = taus[:, None]
         p = c.pressure(r, t)
         stick = (np.abs(r) <= b[:, None]) & (b[:, None] > 0)
-        return {"r": r, "traction": c.traction(r, t), "upper": p, "lower": -p,
-                "stick_lo": np.where(stick, -p, 0.0), "stick_hi": np.where(stick, p, 0.0)}
+        return {"r": r, "traction": c.traction(r, t), "upper": p,
+                "stick_hi": np.where(stick, p, 0.0)}
 
     def table(self, c: Contact, tau: float) -> dict[str, np.ndarray]:
         """The profile of contact `c` at time tau (rad), on the points `update_tau` plots,

@@ -25,6 +25,7 @@ from bokeh.models import (
     BoxZoomTool,
     ColumnDataSource,
     CustomJS,
+    CustomJSTransform,
     Glyph,
     GlyphRenderer,
     Label,
@@ -37,6 +38,7 @@ from bokeh.models import (
     WheelZoomTool,
 )
 from bokeh.plotting import figure
+from bokeh.transform import transform
 
 from core import Contact
 
@@ -161,6 +163,16 @@ def draw(fig, glyph: type[Glyph], source: ColumnDataSource | None = None,
                 if rest == trait and feature in VISUALS:
                     props.setdefault(prop, value)
     return fig.add_glyph(source or ColumnDataSource(), glyph(**props), **renderer)
+
+
+#: JavaScript of a `CustomJSTransform`: each value negated.
+NEGATED_JS = "return xs.map((x) => -x)"
+
+
+def negated(column: str) -> dict:
+    """A glyph property drawing the negative of the source's `column`, computed by the
+    browser: a curve that mirrors another (-mu P, the lower envelope -p) is not sent."""
+    return transform(column, CustomJSTransform(v_func=NEGATED_JS))
 
 
 #: The visual features of a glyph's properties (line_color, fill_alpha, ...).

@@ -434,6 +434,33 @@ def test_the_lower_coulomb_bound_is_painted_as_minus_mu_p(browser, url) -> None:
     page.close()
 
 
+#: JavaScript: the traction plot's lines and stick zone as painted (y after the browser's
+#: transforms), and the columns they are drawn from.
+JS_TRACTION_PAINTED = """() => {
+  const rs = __renderers().filter((v) => v.model.data_source.name === "traction");
+  const area = rs.find((v) => v.model.glyph.type === "VArea");
+  return {lines: rs.filter((v) => v.model.glyph.type === "Line").map((v) => Array.from(v.glyph.y)),
+          y1: Array.from(area.glyph.y1), y2: Array.from(area.glyph.y2),
+          upper: __col("traction", "upper"), stick_hi: __col("traction", "stick_hi"),
+          traction: __col("traction", "traction")};
+}"""
+
+
+def test_the_traction_plots_lower_halves_are_painted_negated(browser, url) -> None:
+    """The traction source carries p and the stick zone's upper edge only
+    (`traction.PROFILE_COLUMNS`); the browser paints -p and the zone's lower edge from
+    them, negated."""
+    page, console = open_explorer(browser, url)
+    page.wait_for_function("() => (__col('traction', 'upper') || []).length > 0",
+                           timeout=20_000)
+    p = page.evaluate(JS_TRACTION_PAINTED)
+    assert max(p["upper"]) > 0 and max(p["stick_hi"]) > 0  # (partial stick at 17 pi / 24)
+    assert sorted(p["lines"]) == sorted([p["upper"], [-x for x in p["upper"]], p["traction"]])
+    assert p["y2"] == p["stick_hi"] and p["y1"] == [-x for x in p["stick_hi"]]
+    assert errors(console) == []
+    page.close()
+
+
 #: The page box of the traction plot and the phase its label names.
 JS_TRACTION_BOX = """() => {
   const v = __views((v) => v.model != null && v.model.type === "Figure"

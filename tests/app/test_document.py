@@ -26,7 +26,7 @@ from app.contact.notes import NOTES
 from app.contact.phases import STYLES
 from app.contact.player import frame_index, frame_taus
 from app.contact.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
-from app.contact.traction import TractionScene
+from app.contact.traction import PROFILE_COLUMNS, TractionScene
 from app.kit.figures import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
 from app.page.explorer import Explorer
 from core import PHASE_NAMES, Contact, Phase, impulse_ratio
@@ -89,6 +89,8 @@ def assert_sources_match_core(ex: Explorer) -> None:
     assert {a, -a} <= set(r.tolist())  # the contact edge is drawn exactly
     stick = (np.abs(r) <= b) & (b > 0)
     eq(d["stick_hi"], np.where(stick, c.pressure(r, tau), 0.0))
+    # (-p and the stick zone's lower edge the browser draws, negated)
+    assert tuple(d) == PROFILE_COLUMNS
     phase = PHASE_NAMES[int(c.phase(tau))]
     assert ex.contact.traction.phase_label.text == phase
 
