@@ -185,18 +185,15 @@ class ExplorerState(param.Parameterized):
         refuses it.  The same parameters give the same object (the last one is kept:
         a move asks for it more than once, and a Contact keeps what it computed)."""
         if self.physical:
-            key: tuple = (True, self.R, self.G, self.nu, self.mu, self.H, self.u0, self.h,
-                          self.omega)
+            si = {k: getattr(self, k) for k in (*SI_KEYS, "nu", "mu")}
+            key: tuple = (True, *si.values())
         else:
             key = (False, self.drive_psi(), self.tau0, self.mu, self.nu)
         last = self._last_contact
         if last is not None and last[0] == key:
             return last[1]
-        if self.physical:
-            c = Contact.from_physical(R=self.R, G=self.G, nu=self.nu, mu=self.mu, H=self.H,
-                                      u0=self.u0, h=self.h, omega=self.omega)
-        else:
-            c = Contact(key[1], self.tau0, mu=self.mu, nu=self.nu)
+        c = Contact.from_physical(**si) if self.physical else Contact(
+            key[1], self.tau0, mu=self.mu, nu=self.nu)
         self._last_contact = (key, c)
         return c
 
@@ -211,6 +208,16 @@ class ExplorerState(param.Parameterized):
         fixes["tau"] = min(max(self.tau, c.tau0), c.tau_end)
         return {k: v for k, v in fixes.items() if getattr(self, k) != v}
 
+    def correct(self, c: Contact) -> bool:
+        """Set the `corrections` for contact `c` in one batch of watchers (not with
+        `param.update`, which reads every parameter of the state first); whether there
+        were any."""
+        fixes = self.corrections(c)
+        with param.parameterized.batch_call_watchers(self):
+            for k, v in fixes.items():
+                setattr(self, k, v)
+        return bool(fixes)
+
     def set_input(self, name: str, value: object) -> None:
         """Set parameter `name` to `value` and, in the same batch of watchers, what
         follows from it (`corrections`): each watcher is called once, on the corrected
@@ -222,11 +229,10 @@ class ExplorerState(param.Parameterized):
         with param.parameterized.batch_call_watchers(self):
             setattr(self, name, value)
             try:
-                fixes = self.corrections(self.contact())
+                c = self.contact()
             except ValueError:
                 return
-            for k, v in fixes.items():
-                setattr(self, k, v)
+            self.correct(c)
 
     def drive_psi(self) -> float:
         """The psi of the drive: the state's own, or with drive = 'angle' the one theta,

@@ -118,12 +118,7 @@ class ContactView(param.Parameterized):
             if s.physical or s.drive == "angle":
                 return
             raise
-        fixes = s.corrections(c)
-        if fixes:  # set in one batch of watchers, which calls this again (not with
-            # `param.update`, which reads every parameter of the state first)
-            with param.parameterized.batch_call_watchers(s):
-                for name, value in fixes.items():
-                    setattr(s, name, value)
+        if s.correct(c):  # (the corrections' batch of watchers calls this again)
             return
         if (c, c.scales) != (self.shown, self.shown.scales):
             self.shown = c
