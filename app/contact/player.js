@@ -94,7 +94,7 @@ for (const [m, a] of texts) {                  // what the server holds, kept up
 }
 const P = get(profiles);
 const L = P.r.length / K;
-const names = ["r", "traction", "upper", "stick_hi"];  // traction.PROFILE_COLUMNS
+const names = Object.keys(P);  // the profile's columns (traction.PROFILE_COLUMNS)
 const seconds = F.seconds[0], speed = F.speed[0], start = F.start[0];
 const t0 = performance.now();
 let last = -1, phase = -1;
