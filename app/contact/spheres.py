@@ -80,6 +80,8 @@ _ANGLES = np.linspace(0.0, 2.0 * math.pi, OUTLINE_POINTS)
 #: the unit circle's outline and the held upper sphere's (centre (0, 1)), radii
 _COS, _SIN = np.cos(_ANGLES), np.sin(_ANGLES)
 _UPPER_Y = 1.0 + _SIN
+#: the force labels' drop below their arrows' tips (P's none, T's 0.14 radii)
+_LABEL_DROP = np.array([0.0, 0.14])
 
 #: The period strip: tau from PERIOD[0] to PERIOD[1] drawn across x in [-1.5, 1.5]
 #: sphere radii, sin tau as STRIP_HEIGHT radii about y = STRIP_Y.
@@ -132,8 +134,12 @@ def _rows(*columns: np.ndarray) -> np.ndarray:
 
 def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
     """What the scene draws at each of the K times `taus`, in sphere radii: per source
-    name, its columns as arrays of shape (K, n) (n rows per time)."""
+    name, its columns as arrays of shape (K, n) (n rows per time).
+
+    (One array operation per quantity for all K times: `update_tau` asks for one time
+    on every move, where each numpy call's own cost is most of the work.)"""
     taus = np.atleast_1d(np.asarray(taus, float))
+    K = taus.size
     line = c.at(taus)
     H, u0 = drawn_amplitudes(c)
     s0 = math.sin(c.tau0)
@@ -142,58 +148,55 @@ def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
     # centre of the lower sphere (eq 3), the upper one's is (0, 1); its top at rest is
     # H s0 below the upper sphere's bottom (the gap h, eq 4)
     cx, cy = u0 * sin_t, -1.0 - H * s0 + H * sin_t
-    touching = line.phase != 0
-    overlap = np.where(touching, np.maximum(H * (sin_t - s0), 0.0), 0.0)
+    touching = (line.phase != 0)[:, None]
     # the plane midway between the undeformed surfaces: both are flattened to it
-    mid = overlap / 2
-    shape = (taus.size, _ANGLES.size)
-    upper_y = np.broadcast_to(_UPPER_Y, shape)
+    mid = (np.maximum(H * (sin_t - s0), 0.0) / 2)[:, None]  # (overlap / 2, if touching)
+    upper_y = np.where(touching, np.maximum(_UPPER_Y, mid), _UPPER_Y)
     lower_y = cy[:, None] + _SIN
-    upper_y = np.where(touching[:, None], np.maximum(upper_y, mid[:, None]), upper_y)
-    lower_y = np.where(touching[:, None], np.minimum(lower_y, mid[:, None]), lower_y)
+    lower_y = np.where(touching, np.minimum(lower_y, mid), lower_y)
     # the patch: core's a / a* and b / a*, a* drawn as sqrt((H - h) / 2) radii (eq 7)
     a_star = math.sqrt(H * gap / 2)
     a, b = line.contact_radius * a_star, line.stick_radius * a_star
     xc = cx / 2  # midway between the centres
-    y = mid
+    y = np.where(touching[:, 0], mid[:, 0], 0.0)
     looks = [style(p) for p in line.phase]
-    ring = np.array([look.ring_color for look in looks], dtype=object)
-    stick = np.full(taus.size, STICK_COLOR, dtype=object)
+    ring = [look.ring_color for look in looks]
     patch = {
         "x0": _rows(xc - a, xc - b, xc + b),
         "x1": _rows(xc - b, xc + b, xc + a),
         "y": _rows(y, y, y),
-        "color": _rows(ring, stick, ring),
+        "color": np.array([[r, STICK_COLOR, r] for r in ring], dtype=object),
     }
     P, T = line.normal_force, line.tangential_force
     # one length scale for both (T / T0 and mu P / T0 = P / P0 are in the same units):
     # the contact's largest P, (1 - sin tau0)^(3/2) P0 at pi/2 (eq 9), is ARROW long
     unit = ARROW / gap**1.5
+    uT = unit * T
     shown = _rows(P, np.abs(T)) * unit > 0.01  # a force drawn with its head
-    labels = np.array([[f"P = {p:.3g} P₀", f"T = {t:+.3g} T₀"] for p, t in zip(P, T,
-                                                                              strict=True)],
-                      dtype=object).reshape(taus.size, 2)
-    tip_x, tip_y = _rows(xc, xc + unit * T), _rows(y + unit * P, y)
+    labels = np.array([[f"P = {p:.3g} P₀", f"T = {t:+.3g} T₀"]
+                       for p, t in zip(P.tolist(), T.tolist(), strict=True)],
+                      dtype=object).reshape(K, 2)
+    tip_x, tip_y = _rows(xc, xc + uT), _rows(y + unit * P, y)
     forces = {
         "x0": _rows(xc, xc), "y0": _rows(y, y),
         "x1": tip_x, "y1": tip_y,
         # labels: P's beside its tip, T's centred below its arrow
-        "lx": _rows(xc + 0.08, xc + unit * T / 2),
-        "ly": tip_y - np.array([0.0, 0.14]),
-        "align": np.array([["left", "center"]] * taus.size, dtype=object),
+        "lx": _rows(xc + 0.08, xc + uT / 2),
+        "ly": tip_y - _LABEL_DROP,
+        "align": np.array([["left", "center"]] * K, dtype=object),
         "head": np.where(shown, HEAD_SIZE, 0),
         # the triangle marker points up; turned to point along T
-        "angle": _rows(np.zeros_like(T), np.where(T < 0, math.pi / 2, -math.pi / 2)),
+        "angle": _rows(0.0 * T, np.where(T < 0, math.pi / 2, -math.pi / 2)),
         "label": np.where(shown, labels, ""),
         # the time and the contact, what every plot's stamp shows (`follow_clock`: this
         # source changes with each of them, on a slider move as on a played frame)
         "tau": _rows(taus, taus),
-        "psi": np.full((taus.size, 2), c.psi), "tau0": np.full((taus.size, 2), c.tau0),
+        "psi": np.full((K, 2), c.psi), "tau0": np.full((K, 2), c.tau0),
     }
     badge = {"text": np.array([[look.name] for look in looks], dtype=object),
              "color": np.array([[look.color] for look in looks], dtype=object)}
     return {
-        "spheres_upper": {"x": np.broadcast_to(_COS, shape), "y": upper_y},
+        "spheres_upper": {"x": np.ones((K, 1)) * _COS, "y": upper_y},
         "spheres_lower": {"x": cx[:, None] + _COS, "y": lower_y},
         "spheres_patch": patch,
         "spheres_forces": forces,
