@@ -21,22 +21,26 @@ from app.kit.wire import inline
 
 def show(source: ColumnDataSource, data: dict[str, Any]) -> None:
     """Give `source` this data, its numeric arrays sent inline (`app.kit.wire.inline`),
-    unless it holds it already (nothing is sent then): every column equal in value, as
-    `np.array_equal` has it.  Bokeh does not validate the columns (`validate(False)`,
-    local to this call): they are arrays and lists of text that the scenes make, and
-    Bokeh's check of every column was ~a third of a psi move's source updates."""
-    held = source.data
-    if data.keys() != held.keys() or not all(same(held[k], v) for k, v in data.items()):
+    unless it holds it already (nothing is sent then): every column the same (`same`).
+    Bokeh does not validate the columns (`validate(False)`, local to this call): they
+    are arrays and lists of text that the scenes make, and Bokeh's check of every
+    column was ~a third of a psi move's source updates."""
+    new, held = inline(data), source.data
+    if new.keys() != held.keys() or not all(same(held[k], v) for k, v in new.items()):
         with validate(False):
-            source.data = inline(data)
+            source.data = new
 
 
 def same(held: Any, new: Any) -> bool:
-    """Whether column `new` equals column `held` in value (`np.array_equal`: NaN equals
-    nothing), for two numeric arrays or two lists of text without its conversions."""
+    """Whether column `new` is column `held`: numeric arrays of one dtype and shape, bit
+    for bit (a column of NaN held already is the same, -0.0 is not 0.0; a comparison of
+    the bytes, ~10 times faster than numpy's element by element for a plot's columns,
+    `InlineColumn`s above all), lists of text equal; others equal in value
+    (`np.array_equal`)."""
     if isinstance(held, np.ndarray) and isinstance(new, np.ndarray) \
-            and held.dtype.kind in "fiu" and new.dtype.kind in "fiu":
-        return held.shape == new.shape and bool((held == new).all())
+            and new.dtype.kind in "fiu":
+        return (held.dtype == new.dtype and held.shape == new.shape
+                and held.tobytes() == new.tobytes())
     if isinstance(held, list) and isinstance(new, list) \
             and all(isinstance(x, str) for x in new):
         return held == new
