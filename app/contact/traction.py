@@ -107,8 +107,11 @@ class TractionScene(Scene):
         taus = np.atleast_1d(np.asarray(taus, float))
         line = c.at(taus)
         a, b = line.contact_radius, line.stick_radius
-        grid = np.broadcast_to(self.r_grid, (taus.size, self.r_grid.size))
-        r = np.sort(np.concatenate([grid, np.stack([-a, a, -b, b], axis=1)], axis=1), axis=1)
+        n = self.r_grid.size
+        r = np.empty((taus.size, n + 4))
+        r[:, :n] = self.r_grid
+        r[:, n:] = np.array([-a, a, -b, b]).T
+        r.sort(axis=1)
         t = taus[:, None]
         p = c.pressure(r, t)
         stick = (np.abs(r) <= b[:, None]) & (b[:, None] > 0)
