@@ -44,6 +44,7 @@ def captions(c: Contact, taus: np.ndarray) -> list[str]:
     a/a*, b/a* (and t, T, a, b in SI units for a contact built from SI inputs)."""
     line = c.at(taus)  # (one validation of taus for the three)
     T, a, b = line.tangential_force, line.contact_radius, line.stick_radius
+    taus, T, a, b = (np.asarray(v, float).tolist() for v in (taus, T, a, b))
     texts = [f"τ = {t:.4f} rad  T/T₀ = {x:+.4f}\na/a* = {y:.4f}  b/a* = {z:.4f}"
              for t, x, y, z in zip(taus, T, a, b, strict=True)]
     sc = c.scales
