@@ -183,9 +183,9 @@ class TextTable(WrittenHTML):
     row per (quantity, value) of `rows`, each quantity a row header; all of it text.
     `write(rows=...)` changes the rows.
 
-    The rows travel as one text, their JSON (`cells`): a list of lists costs param and
-    Bokeh a walk of every item at each change (~0.3 ms of server CPU for the twenty rows
-    of the derived quantities), a text one comparison."""
+    The rows travel as one text, their JSON (`cells`, `pairs_json`): a list of lists
+    costs param and Bokeh a walk of every item at each change (~0.3 ms of server CPU for
+    the twenty rows of the derived quantities), a text one comparison."""
 
     caption = param.String(default="")
     columns = param.List(default=["Quantity", "Value"], item_type=str)
@@ -199,7 +199,7 @@ class TextTable(WrittenHTML):
         params.setdefault("margin", 0)
         params.setdefault("sizing_mode", "stretch_width")
         if rows is not None:
-            params["cells"] = _cells(rows)
+            params["cells"] = pairs_json(rows)
         super().__init__(**params)
 
     @property
@@ -209,20 +209,22 @@ class TextTable(WrittenHTML):
 
     @rows.setter
     def rows(self, rows: list[list[str]]) -> None:
-        self.cells = _cells(rows)
+        self.cells = pairs_json(rows)
 
     def write(self, **values: Any) -> None:
         """`WrittenHTML.write`, `rows` given as such."""
         if "rows" in values:
-            values["cells"] = _cells(values.pop("rows"))
+            values["cells"] = pairs_json(values.pop("rows"))
         super().write(**values)
 
 
-def _cells(rows: list[list[str]]) -> str:
-    """The JSON of (quantity, value) rows of str (TypeError for anything else), with no
-    '<', '>' or '&' (written as JSON escapes): Panel passes a text parameter through its
-    HTML sanitizer when it renders the component, which would change those."""
-    if not all(len(r) == 2 and all(isinstance(x, str) for x in r) for r in rows):
-        raise TypeError(f"rows must be (quantity, value) pairs of str, not {rows!r:.80}")
-    text = json.dumps([list(r) for r in rows], ensure_ascii=False)
+def pairs_json(pairs: list[list[str]], what: str = "rows") -> str:
+    """The JSON of (name, value) pairs of str (TypeError naming `what` for anything
+    else), with no '<', '>' or '&' (written as JSON escapes): Panel passes a text
+    parameter through its HTML sanitizer when it renders the component, which would
+    change those.  A list of pairs as one text costs param and Bokeh one comparison at a
+    change, where a list of lists costs a walk of every item."""
+    if not all(len(r) == 2 and all(isinstance(x, str) for x in r) for r in pairs):
+        raise TypeError(f"{what} must be (name, value) pairs of str, not {pairs!r:.80}")
+    text = json.dumps([list(r) for r in pairs], ensure_ascii=False)
     return text.replace("&", "\\u0026").replace("<", "\\u003c").replace(">", "\\u003e")

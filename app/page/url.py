@@ -18,7 +18,7 @@ import param
 
 from app.contact.state import ExplorerState, parse_query, query_value
 from app.kit.style import VISUALLY_HIDDEN_CSS
-from app.kit.texts import WrittenHTML
+from app.kit.texts import WrittenHTML, pairs_json
 from app.motor import PREFIX as MOTOR_PREFIX
 from app.page.presentation import VIEW
 
@@ -79,7 +79,8 @@ _WRITE_URL = """
 if (state.timer != null) { clearTimeout(state.timer); }
 state.timer = setTimeout(() => {
   state.timer = null;
-  const search = data.query.length ? "?" + new URLSearchParams(data.query).toString() : "";
+  const pairs = JSON.parse(data.query);
+  const search = pairs.length ? "?" + new URLSearchParams(pairs).toString() : "";
   if (window.location.search !== search) {
     const url = window.location.pathname + search + window.location.hash;
     if (state.written) { window.history.pushState({}, "", url); }
@@ -91,17 +92,17 @@ state.timer = setTimeout(() => {
 
 
 class UrlWriter(WrittenHTML):
-    """The page's URL query (`query`, its (key, value) pairs in order), written into the
-    browser's address bar `delay_ms` after its last change (`write(query=...)` changes
-    it; pairs, not a text: Panel would write a text's '&' as '&amp;' on the page).
+    """The page's URL query (`query`: its (key, value) pairs in order, as one JSON text,
+    `app.kit.texts.pairs_json`), written into the browser's address bar `delay_ms` after
+    its last change (`write(query=pairs)` changes it).
 
     Every change of the query is one property in the message of the change that made it
     (Panel's `Location` would send it in a message of its own, and the browser would
     send the new address back); a slider drag leaves one history entry, at its end.
     Nothing to see: out of sight, like a live region."""
 
-    query = param.List(default=[], allow_refs=False,
-                       doc="the query's [key, value] pairs, in order")
+    query = param.String(default="[]", allow_refs=False,
+                         doc="the query's [key, value] pairs, in order, as JSON")
     delay_ms = param.Integer(default=400, bounds=(0, None))
 
     _template = '<div id="url"></div>'
@@ -111,3 +112,9 @@ class UrlWriter(WrittenHTML):
         params["stylesheets"] = [VISUALLY_HIDDEN_CSS, *params.get("stylesheets", [])]
         params.setdefault("margin", 0)
         super().__init__(**params)
+
+    def write(self, **values) -> None:
+        """`WrittenHTML.write`, `query` given as (key, value) pairs of str."""
+        if "query" in values:
+            values["query"] = pairs_json(values["query"], "query")
+        super().write(**values)

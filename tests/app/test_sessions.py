@@ -225,7 +225,7 @@ def test_a_slider_move_sends_its_url_in_its_one_message(served) -> None:
     assert later == [], f"{len(later)} messages followed the move's: {later}"
     query = [e["new"] for e in json.loads(patches[0])["events"] if e.get("attr") == "query"]
     assert len(query) == 1, "the move's message holds no URL query"
-    assert ["psi", repr(psi)] in query[0]
+    assert ["psi", repr(psi)] in json.loads(query[0])  # (the pairs' JSON)
 
 
 def test_a_session_built_for_its_websocket_alone_has_the_servers_stylesheets(served) -> None:

@@ -29,3 +29,19 @@ def test_a_table_refuses_rows_that_are_not_pairs_of_text(rows) -> None:
     with pytest.raises(TypeError, match="rows must be"):
         table.rows = rows
     assert table.rows == []
+
+
+def test_the_url_writers_query_travels_as_json_the_sanitizer_leaves_alone() -> None:
+    """`UrlWriter.write(query=pairs)`: the browser is sent the pairs' JSON, which holds
+    no '<', '>' or '&' and reads back as the pairs, in order; anything but pairs of text
+    is refused, naming the query."""
+    from app.page.url import UrlWriter
+
+    pairs = [["psi", "2.5"], ["material", "a&b <c>"], ["tau0", "0.5"]]
+    writer = UrlWriter(name="url_writer")
+    writer.write(query=pairs)
+    assert not any(ch in writer.query for ch in "<>&")
+    assert json.loads(writer.query) == pairs
+    with pytest.raises(TypeError, match="query must be"):
+        writer.write(query=[["psi", 2.5]])
+    assert json.loads(writer.query) == pairs
