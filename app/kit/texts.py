@@ -58,7 +58,19 @@ class WrittenHTML(ReactiveHTML):
     watcher runs and finds the parameter equal already.  The parameters written on every
     move are declared `allow_refs=False`: they take values, and Panel would otherwise
     look for a reference in each value set (~5 µs a set).
+
+    `MIRRORED`: whether `write` keeps the parameters equal to what it writes.  A
+    component whose values the browser sends back (a slider) must: Panel compares what
+    arrives with the parameter.  One whose text only the server writes (a description,
+    a table, a live region, the URL) is written into its data model alone once it is
+    rendered in the current document: the page is then its truth (`shown`), and its
+    parameters keep the values it was rendered with.  Setting a parameter past Panel's
+    watchers (`write_past_panel`) is about half of a write's server CPU, and a psi move
+    writes half a dozen texts.
     """
+
+    #: whether `write` sets the parameters too where the component is rendered
+    MIRRORED: ClassVar[bool] = True
 
     def data_model(self, doc: Document | None) -> Model | None:
         """This component's data model in `doc`; None where it is not rendered (or its
@@ -75,17 +87,27 @@ class WrittenHTML(ReactiveHTML):
         component's data model in the current document (`panel.state.curdoc`), outside
         Panel's update of the component, as they are (Panel would pass a text through
         its HTML sanitizer first, which writes '&' as '&amp;': the scripts set texts as
-        text).  Where it is not rendered (no document, or another one) the parameters
-        are set as usual (Panel updates what it rendered)."""
-        changed = {k: v for k, v in values.items() if getattr(self, k) != v}
+        text), and (`MIRRORED`) set on the component.  Where it is not rendered (no
+        document, or another one) the parameters are set as usual (Panel updates what it
+        rendered)."""
+        model = self.data_model(pn.state.curdoc)
+        held_by = self if model is None or self.MIRRORED else model
+        changed = {k: v for k, v in values.items() if getattr(held_by, k) != v}
         if not changed:
             return
-        doc = pn.state.curdoc
-        model = self.data_model(doc)
         if model is None:
             self.param.update(**changed)
-            return
-        write_past_panel(self, changed, model, changed)
+        elif self.MIRRORED:
+            write_past_panel(self, changed, model, changed)
+        else:
+            with held(), validate(False):  # (`write_past_panel`, the parameters left)
+                model.update(**changed)
+
+    def shown(self, name: str) -> Any:
+        """The value of parameter `name` on the page: its data model's where the component
+        is rendered in the current document, else the parameter's."""
+        model = self.data_model(pn.state.curdoc)
+        return getattr(self if model is None else model, name)
 
 
 class PaneText:
@@ -147,6 +169,8 @@ class Description(WrittenHTML):
     label = param.String(default="", allow_refs=False)
     description = param.String(default="", allow_refs=False)
 
+    MIRRORED: ClassVar[bool] = False  # (the server's text alone)
+
     _template = '<div id="fig" role="figure"><p id="desc"></p></div>'
     _scripts: ClassVar[dict[str, str]] = dict.fromkeys(
         ("render", "label", "description"), _DESCRIBE)
@@ -191,6 +215,8 @@ class TextTable(WrittenHTML):
     columns = param.List(default=["Quantity", "Value"], item_type=str)
     cells = param.String(default="[]", allow_refs=False, doc="the rows as JSON (`rows`)")
 
+    MIRRORED: ClassVar[bool] = False  # (the server's text alone)
+
     _template = '<table id="table" class="readout"></table>'
     _scripts: ClassVar[dict[str, str]] = dict.fromkeys(
         ("render", "caption", "columns", "cells"), _TABULATE)
@@ -204,12 +230,12 @@ class TextTable(WrittenHTML):
 
     @property
     def rows(self) -> list[list[str]]:
-        """The (quantity, value) pairs of str, top to bottom."""
-        return json.loads(self.cells)
+        """The (quantity, value) pairs of str, top to bottom, as the page shows them."""
+        return json.loads(self.shown("cells"))
 
     @rows.setter
     def rows(self, rows: list[list[str]]) -> None:
-        self.cells = pairs_json(rows)
+        self.write(rows=rows)
 
     def write(self, **values: Any) -> None:
         """`WrittenHTML.write`, `rows` given as such."""
