@@ -12,9 +12,10 @@ again.
 
 Even a `ReactiveHTML`'s change costs Panel about 0.8 ms of server CPU (it recomputes the
 component's design, its stylesheets among them, on every change of any property).
-`WrittenHTML.write` sets the parameters and writes the changed ones straight into the
-component's Bokeh data model in the current document (0.05 ms): the same message, the
-same property, without Panel's recomputation.
+`WrittenHTML.write` writes the changed parameters straight into the component's Bokeh
+data model in the current document (0.05 ms): the same message, the same property,
+without Panel's recomputation; a text only the server writes lives there alone once
+rendered (`WrittenHTML.MIRRORED`).
 """
 
 from __future__ import annotations
