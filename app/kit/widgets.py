@@ -218,13 +218,8 @@ class DirectSlider(LabelledSlider):
     through its own machinery (~1 ms of server CPU per move), and sets `value`.  This
     one's scripts set the value with BokehJS's `setv`, which Panel does not take: its
     `value` changes only from the server, and the browser's moves are taken by a Bokeh
-    `on_change` of the model's `data` (`ExactSlider.follow_browser`), once each.  Panel
-    never compares a browser's value with the parameter, so `write` writes the value
-    into the data model alone once rendered (`WrittenHTML.MIRRORED`; `shown("value")`
-    is the value on the page).
+    `on_change` of the model's `data` (`ExactSlider.follow_browser`), once each.
     """
-
-    MIRRORED: ClassVar[bool] = False
 
     _scripts: ClassVar[dict[str, str]] = {
         **LabelledSlider._scripts,

@@ -52,14 +52,13 @@ def test_a_text_only_the_server_writes_lives_in_its_data_model_once_rendered() -
     description): rendered in the current document, the text goes to its data model
     alone (`shown` reads it there; sent once, not again when equal); not rendered, the
     parameter takes it.  A slider's value (`MIRRORED`) is kept on the component too:
-    Panel compares what the browser sends with it; a `DirectSlider`'s, which the browser
-    sends past Panel, is not."""
+    Panel compares what the browser sends with it."""
     import panel as pn
     from bokeh.document import Document
     from panel.io.state import set_curdoc
 
     from app.kit.texts import Description
-    from app.kit.widgets import DirectSlider, LabelledSlider
+    from app.kit.widgets import LabelledSlider
 
     loose = Description(label="l", name="loose")
     loose.write(description="first")
@@ -67,25 +66,20 @@ def test_a_text_only_the_server_writes_lives_in_its_data_model_once_rendered() -
 
     text = Description(label="fig", description="built", name="d_test")
     slider = LabelledSlider(label="s", value=1.0, start=0.0, end=5.0, name="s_test")
-    direct = DirectSlider(label="d", value=1.0, start=0.0, end=5.0, name="ds_test")
     doc, events = Document(), []
     with set_curdoc(doc):
-        doc.add_root(pn.Column(text, slider, direct).get_root(doc))
+        doc.add_root(pn.Column(text, slider).get_root(doc))
         doc.on_change(events.append)
         text.write(description="moved")
         slider.write(value=2.0)
-        direct.write(value=3.0)
         assert text.data_model(doc).description == text.shown("description") == "moved"
         assert text.description == "built"  # (the text it was rendered with)
         assert slider.value == slider.data_model(doc).value == 2.0
-        assert direct.shown("value") == 3.0 and direct.value == 1.0
         sent = [(e.model.name, e.attr, e.new) for e in events]
         assert ("d_test", "description", "moved") in sent
-        assert ("s_test", "value", 2.0) in sent and ("ds_test", "value", 3.0) in sent
-        assert len(sent) == 3
+        assert ("s_test", "value", 2.0) in sent and len(sent) == 2
         events.clear()
         text.write(description="moved")
         slider.write(value=2.0)
-        direct.write(value=3.0)
         assert events == []
     assert text.shown("description") == "built"  # (no current document: the parameter)
