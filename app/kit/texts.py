@@ -41,9 +41,14 @@ def write_past_panel(component: param.Parameterized, values: dict[str, Any], mod
     with param.parameterized.discard_events(component):  # (Panel's watchers not called)
         for name, value in values.items():  # (not `param.update`: it reads every
             setattr(component, name, value)  # parameter of the component first)
-    # a change held already goes out with the others; outside Panel's handling of a
-    # change, Bokeh's lock may not be held (`held`); the values passed the parameters'
-    # own checks, so Bokeh's are not repeated
+    write_model(model, properties)
+
+
+def write_model(model: Model, properties: dict[str, Any]) -> None:
+    """Set the Bokeh `model`'s `properties` in the current document, values a component's
+    parameters accept: a change held already goes out with the others; outside Panel's
+    handling of a change, Bokeh's lock may not be held (`held`); the values passed the
+    parameters' own checks, so Bokeh's are not repeated."""
     with held(), validate(False):
         model.update(**properties)
 
@@ -101,8 +106,7 @@ class WrittenHTML(ReactiveHTML):
         elif self.MIRRORED:
             write_past_panel(self, changed, model, changed)
         else:
-            with held(), validate(False):  # (`write_past_panel`, the parameters left)
-                model.update(**changed)
+            write_model(model, changed)
 
     def shown(self, name: str) -> Any:
         """The value of parameter `name` on the page: its data model's where the component
