@@ -148,17 +148,18 @@ def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
     # centre of the lower sphere (eq 3), the upper one's is (0, 1); its top at rest is
     # H s0 below the upper sphere's bottom (the gap h, eq 4)
     cx, cy = u0 * sin_t, -1.0 - H * s0 + H * sin_t
-    touching = (line.phase != 0)[:, None]
-    # the plane midway between the undeformed surfaces: both are flattened to it
-    mid = (np.maximum(H * (sin_t - s0), 0.0) / 2)[:, None]  # (overlap / 2, if touching)
-    upper_y = np.where(touching, np.maximum(_UPPER_Y, mid), _UPPER_Y)
+    touching = line.phase != 0
+    # the plane midway between the undeformed surfaces (half their overlap): both are
+    # flattened to it
+    y = np.where(touching, np.maximum(H * (sin_t - s0), 0.0) / 2, 0.0)
+    t, mid = touching[:, None], y[:, None]
+    upper_y = np.where(t, np.maximum(_UPPER_Y, mid), _UPPER_Y)
     lower_y = cy[:, None] + _SIN
-    lower_y = np.where(touching, np.minimum(lower_y, mid), lower_y)
+    lower_y = np.where(t, np.minimum(lower_y, mid), lower_y)
     # the patch: core's a / a* and b / a*, a* drawn as sqrt((H - h) / 2) radii (eq 7)
     a_star = math.sqrt(H * gap / 2)
     a, b = line.contact_radius * a_star, line.stick_radius * a_star
     xc = cx / 2  # midway between the centres
-    y = np.where(touching[:, 0], mid[:, 0], 0.0)
     looks = [style(p) for p in line.phase]
     ring = [look.ring_color for look in looks]
     patch = {
