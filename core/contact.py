@@ -43,6 +43,9 @@ class Contact:
       (eq 23); psi <= 1 is full stick, psi > 1 slip, partial stick and counter-slip.
     - tau0 in (-pi/2, pi/2): start of contact, sin tau0 = h / H (eq 4); tau0 < 0 is a preload.
     - mu in (0, 1e3]: friction coefficient; nu in (-1, 0.5]: Poisson ratio.
+    - upper_share in (0, 1): the upper body's share of the relative tangential
+      displacement, 1/2 (the default) for the paper's identical spheres; it enters only
+      each body's centre motion (``core.physical.upper_share``; ``from_physical`` sets it).
 
     Times tau = omega t are in radians and taken modulo 2 pi; every method accepts scalars
     or arrays and returns arrays of the broadcast shape, zero (never nan) outside contact
@@ -61,9 +64,10 @@ class Contact:
     mu: float = 0.2
     nu: float = 0.3
     scales: Scales | None = field(default=None, repr=False, compare=False)
+    upper_share: float = 0.5
 
     def __post_init__(self) -> None:
-        for name in ("psi", "tau0", "mu", "nu"):
+        for name in ("psi", "tau0", "mu", "nu", "upper_share"):
             object.__setattr__(self, name, check_param(name, getattr(self, name)))
 
     @classmethod
@@ -95,7 +99,8 @@ class Contact:
         the pair's."""
         inputs = PhysicalInputs(R=R, G=G, nu=nu, mu=mu, H=H, u0=u0, h=h, omega=omega,
                                 R2=R2, G2=G2, nu2=nu2)
-        c = cls(psi=inputs.psi, tau0=inputs.tau0, mu=inputs.mu, nu=inputs.equivalent[2])
+        c = cls(psi=inputs.psi, tau0=inputs.tau0, mu=inputs.mu, nu=inputs.equivalent[2],
+                upper_share=inputs.upper_share)
         return replace(c, scales=Scales.of(inputs, c.F0, c.impulse_ratio))
 
     # ---- scalars -------------------------------------------------------------------
@@ -194,7 +199,7 @@ class Contact:
         the traction at the time shown): each quantity of one time is computed once.
         (Threads may share a contact: every step here is one operation on a dict.)"""
         if tau.size != 1:
-            return Timeline(tau, self.psi, self._half_e[0])
+            return Timeline(tau, self.psi, self._half_e[0], upper_share=self.upper_share)
         lines, passes = self._instants
         time = tau.tobytes()
         line = lines.get((tau.shape, time))
@@ -205,7 +210,8 @@ class Contact:
             held = np.array(tau, dtype=np.float64)
             held.setflags(write=False)
             line = lines[tau.shape, time] = Timeline(held, self.psi, self._half_e[0],
-                                                     passes.setdefault(time, {}))
+                                                     passes.setdefault(time, {}),
+                                                     self.upper_share)
         return line
 
     def _along(self, tau: ArrayLike, name: str) -> NDArray:
@@ -265,6 +271,16 @@ class Contact:
     def centre_velocity(self, tau: ArrayLike) -> NDArray[np.float64]:
         """v2 / (omega u0), velocity of the contact centre of the upper sphere (eq 42)."""
         return self._along(tau, "centre_velocity")
+
+    def lower_centre_displacement(self, tau: ArrayLike) -> NDArray[np.float64]:
+        """u1 / u0, elastic displacement of the contact centre of the lower body (its
+        surface point r = 0 moves by u_x0 + u1); -u2 for identical bodies."""
+        return self._along(tau, "lower_centre_displacement")
+
+    def lower_centre_velocity(self, tau: ArrayLike) -> NDArray[np.float64]:
+        """du1/dt / (omega u0), elastic velocity of the contact centre of the lower body;
+        -v2 for identical bodies."""
+        return self._along(tau, "lower_centre_velocity")
 
     @staticmethod
     def drive_displacement(tau: ArrayLike) -> NDArray[np.float64]:

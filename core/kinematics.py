@@ -1,4 +1,11 @@
-"""Motion of the contact-area centre r = 0 of the upper sphere (eqs 42, 43), dimensionless.
+"""Motion of the contact-area centre r = 0 of each body (eqs 42, 43), dimensionless.
+
+Eqs 42, 43 are the motion of identical spheres, u2 = -u1: half the relative tangential
+displacement u2 - u1 of the two surfaces at r = 0. For dissimilar bodies (Goodman's
+approximation, docs/physics.md section 11.1) the relative displacement is the equivalent
+pair's, and each body takes its share of it in proportion to its tangential compliance
+(2 - nu) / G: the upper body 2 lambda u2, the lower one -2 (1 - lambda) u2, lambda the
+upper body's share (``core.physical.upper_share``; ``own_motion``).
 
 Displacement in u0, velocity in omega u0. With s = sin(e/2), a^2 = (1 - w)(1 + w) and
 sin tau - sin tau0 = 2 s^2 a^2 (``core.clock``):
@@ -51,3 +58,11 @@ def centre_velocity(
         0.0,
     )
     return factor * cos_tau
+
+
+def own_motion(half: NDArray[np.float64], share: float) -> NDArray[np.float64]:
+    """A body's own motion, 2 share x half, from ``half``, the equivalent pair's u2 or v2
+    (half the relative motion), and ``share``, the body's share of the compliance
+    (lambda for the upper body, 1 - lambda for the lower one). ``half`` itself, the same
+    array, when share = 1/2 (identical bodies: eqs 42, 43 bit for bit)."""
+    return half if share == 0.5 else (2.0 * share) * half

@@ -53,6 +53,39 @@ def equivalent_pair(R: float, G: float, nu: float, R2: float | None = None,
     return R_eq, G_eq, nu_eq
 
 
+def upper_share(G: float, nu: float, G2: float | None = None, nu2: float | None = None
+                ) -> float:
+    """The fraction of the contact's relative tangential displacement that body 1 (the
+    upper body: G in Pa, nu) takes against body 2 (the lower, driven body: G2, nu2; None
+    means body 1's value), under Goodman's approximation (docs/physics.md, section 11.1).
+
+    Parameters
+    ----------
+    G, nu : float
+        Shear modulus (Pa) and Poisson ratio of the upper body.
+    G2, nu2 : float or None
+        The same of the lower body; None: the upper body's value.
+
+    Returns
+    -------
+    float
+        lambda = C1 / (C1 + C2) in (0, 1), with C = (2 - nu) / G each body's tangential
+        compliance (Cerruti: a traction q(r) displaces the surface point r = 0 by
+        C / 2 times the integral of q over 0 < r < a); exactly 1/2 for identical bodies.
+
+    See Also
+    --------
+    equivalent_pair : the identical pair whose u2 is half the relative displacement.
+    core.Contact.centre_displacement : the upper body's own motion, 2 lambda times it.
+    """
+    G2 = G if G2 is None else G2
+    nu2 = nu if nu2 is None else nu2
+    if G2 == G and nu2 == nu:
+        return 0.5
+    upper = (2.0 - nu) * G2  # C1 G1 G2: no product here can overflow (G <= 1e13)
+    return upper / (upper + (2.0 - nu2) * G)
+
+
 def dundurs_beta(G: float, nu: float, G2: float, nu2: float) -> float:
     """Dundurs' second constant beta = [(1 - 2 nu1)/G1 - (1 - 2 nu2)/G2] /
     [2 ((1 - nu1)/G1 + (1 - nu2)/G2)] (dimensionless, in [-1/2, 1/2]): the coupling of
@@ -153,6 +186,12 @@ class PhysicalInputs:
         """(R_eq, G_eq, nu_eq), the identical pair of the two bodies (``equivalent_pair``);
         (R, G, nu) when there is no second body."""
         return equivalent_pair(self.R, self.G, self.nu, self.R2, self.G2, self.nu2)
+
+    @property
+    def upper_share(self) -> float:
+        """The upper body's share of the relative tangential displacement
+        (``upper_share``); 1/2 when there is no second body."""
+        return upper_share(self.G, self.nu, self.G2, self.nu2)
 
     @property
     def beta(self) -> float:

@@ -44,6 +44,7 @@ class Timeline:
     psi: float
     sin_half_e: float
     passes: dict[int, NDArray[np.float64]] = field(default_factory=dict, repr=False)
+    upper_share: float = 0.5
 
     def _pass(self, q: int) -> NDArray[np.float64]:
         """Quantity code q of ``core.kernels`` at every time, as a read-only array."""
@@ -98,12 +99,35 @@ class Timeline:
         return self._pass(kernels.TANGENTIAL_FORCE)
 
     @cached_property
-    def centre_displacement(self) -> NDArray[np.float64]:
-        """u2 / u0, displacement of the contact centre of the upper sphere (eq 43)."""
+    def _half_relative_displacement(self) -> NDArray[np.float64]:
+        """Eq 43: u2 / u0 of the equivalent identical pair, half the relative displacement."""
         return _fixed(kinematics.centre_displacement(self.clock, self.approach, self.phase,
                                                      self.psi, self.sin_half_e))
 
     @cached_property
-    def centre_velocity(self) -> NDArray[np.float64]:
-        """v2 / (omega u0), velocity of the contact centre of the upper sphere (eq 42)."""
+    def _half_relative_velocity(self) -> NDArray[np.float64]:
+        """Eq 42: v2 / (omega u0) of the equivalent identical pair."""
         return _fixed(kinematics.centre_velocity(np.cos(self.tau), self.phase, self.psi))
+
+    @cached_property
+    def centre_displacement(self) -> NDArray[np.float64]:
+        """u2 / u0, displacement of the contact centre of the upper body (eq 43)."""
+        return _fixed(kinematics.own_motion(self._half_relative_displacement,
+                                            self.upper_share))
+
+    @cached_property
+    def centre_velocity(self) -> NDArray[np.float64]:
+        """v2 / (omega u0), velocity of the contact centre of the upper body (eq 42)."""
+        return _fixed(kinematics.own_motion(self._half_relative_velocity, self.upper_share))
+
+    @cached_property
+    def lower_centre_displacement(self) -> NDArray[np.float64]:
+        """u1 / u0, elastic displacement of the lower body's contact centre."""
+        return _fixed(0.0 - kinematics.own_motion(self._half_relative_displacement,
+                                                  1.0 - self.upper_share))
+
+    @cached_property
+    def lower_centre_velocity(self) -> NDArray[np.float64]:
+        """v1 / (omega u0) - cos tau, elastic velocity of the lower body's contact centre."""
+        return _fixed(0.0 - kinematics.own_motion(self._half_relative_velocity,
+                                                  1.0 - self.upper_share))

@@ -117,7 +117,8 @@ class Interval:
 #: Dimensionless (``Contact``): psi, tau0 (rad), mu, nu. mu <= 1e3 is far above any real
 #: friction coefficient (dry pairs are below ~10); the bound keeps T0 = mu P0 and the
 #: traction scale mu p* finite for every SI input below. tau (rad) and r (units of a*):
-#: any finite number.
+#: any finite number. upper_share: the upper body's share of the relative tangential
+#: displacement (``core.physical.upper_share``), 1/2 for the paper's identical spheres.
 #:
 #: SI (``Contact.from_physical``): R (m), G (Pa), H, u0, h (m), omega (rad/s). The ranges
 #: span every realistic contact (nanometre to kilometre spheres, 1 Pa gels to beyond
@@ -131,6 +132,7 @@ DOMAIN: dict[str, Interval] = {
     "tau0": Interval(-math.pi / 2, math.pi / 2, lo_open=True, hi_open=True),
     "mu": Interval(0.0, MU_MAX, lo_open=True),
     "nu": Interval(-1.0, 0.5, lo_open=True),
+    "upper_share": Interval(0.0, 1.0, lo_open=True, hi_open=True),
     "tau": Interval(None, None),
     "r": Interval(None, None),
     "R": Interval(1e-9, 1e3),

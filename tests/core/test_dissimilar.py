@@ -1,7 +1,8 @@
 """Two dissimilar bodies under Goodman's approximation (docs/physics.md, section 11.1):
 the identical case unchanged bit for bit, psi and the scales against the effective
 constants E*, G*, R written out in mpmath, psi independent of the radii, Dundurs' beta,
-the motor's balance with the effective constants, the presets, and bad input."""
+the motor's balance with the effective constants, each body's own centre motion against
+Cerruti's displacement under the closed-form traction, the presets, and bad input."""
 
 import dataclasses
 import math
@@ -9,11 +10,12 @@ import math
 import mpmath as mp
 import numpy as np
 import pytest
+from scipy.integrate import quad
 
 from core import PRESETS, Contact, dundurs_beta, equivalent_pair
 from core.elliptic import impulse_factor
 from core.motor import Motor, Rod
-from core.physical import BETA_WARN, beta_warning
+from core.physical import BETA_WARN, beta_warning, upper_share
 
 SI = {"R": 5e-3, "G": 79.3e9, "nu": 0.29, "mu": 0.2, "H": 1e-6, "u0": 0.8e-6, "h": 0.5e-6,
       "omega": 2 * math.pi * 40e3}
@@ -86,6 +88,78 @@ def test_dundurs_beta() -> None:
     assert beta_warning(BETA_WARN) is None
     assert "Goodman" in beta_warning(-0.25)
     assert Contact.from_physical(**SI, G2=1e3, nu2=0.0).scales.beta_warning is not None
+
+
+def cerruti_centre(c: Contact, tau: float, G: float, nu: float) -> float:
+    """The elastic displacement (m) of the surface point r = 0 of a half-space (G, nu)
+    under the contact's traction at tau: Cerruti's point-force solution integrated over
+    the disc, u_x(0) = (2 - nu) / (2 G) int_0^a tau_u(r) dr (exact at r = 0, where the
+    non-axisymmetric terms vanish), by quadrature of ``Contact.traction``."""
+    s = c.scales
+    a, b = float(c.contact_radius(tau)), float(c.stick_radius(tau))
+    points = [b] if 0.0 < b < a else None
+    integral = quad(lambda r: float(c.traction(r, tau)), 0.0, a, points=points,
+                    epsabs=1e-15, epsrel=1e-13, limit=200)[0]
+    return (2.0 - nu) / (2.0 * G) * s.traction_star * s.a_star * integral
+
+
+@pytest.mark.parametrize("second", [{}, SECOND, {"R2": 2e-3, "G2": 152e9, "nu2": 0.22},
+                                    {"G2": 1e3, "nu2": -0.9}])
+@pytest.mark.parametrize("u0", [0.8e-6, 0.1e-6])  # psi > 1 and psi <= 1
+def test_each_body_moves_by_its_own_compliance(second: dict, u0: float) -> None:
+    """The upper body's centre (R, G, nu) and the lower one's (R2, G2, nu2) against
+    Cerruti's displacement of each body under the closed-form traction, and their
+    velocities against its central difference in time, in every phase."""
+    c = Contact.from_physical(**{**SI, "u0": u0}, **second)
+    G2, nu2 = second.get("G2", SI["G"]), second.get("nu2", SI["nu"])
+    taus = [0.7, 1.2, 2.0, 2.5] if c.psi <= 1 else [
+        0.7, 1.2, math.pi / 2 + 0.3 * (c.tau1 - math.pi / 2), c.tau1 + 0.05, 2.5]
+    step = 1e-4
+    for tau in taus:
+        for G, nu, moved, speed in ((SI["G"], SI["nu"], c.centre_displacement,
+                                     c.centre_velocity),
+                                    (G2, nu2, c.lower_centre_displacement,
+                                     c.lower_centre_velocity)):
+            sign = 1.0 if moved == c.centre_displacement else -1.0
+            u = sign * cerruti_centre(c, tau, G, nu)
+            assert float(moved(tau)) * u0 == pytest.approx(u, rel=1e-12, abs=1e-25), tau
+            du = sign * (cerruti_centre(c, tau + step, G, nu)
+                         - cerruti_centre(c, tau - step, G, nu)) / (2 * step)
+            assert float(speed(tau)) * u0 == pytest.approx(du, rel=1e-6), tau
+    # the relative displacement is the equivalent pair's, whatever the share
+    pair = Contact(c.psi, c.tau0, c.mu, c.nu)
+    tau = np.linspace(c.tau0, c.tau_end, 50)
+    np.testing.assert_allclose(c.centre_displacement(tau) - c.lower_centre_displacement(tau),
+                               2 * pair.centre_displacement(tau), rtol=1e-15, atol=1e-17)
+
+
+def test_identical_bodies_centre_motion_bit_for_bit() -> None:
+    tau = np.linspace(-0.5, 3.5, 401)
+    pair = Contact.from_physical(**SI)
+    same = Contact.from_physical(**SI, R2=SI["R"], G2=SI["G"], nu2=SI["nu"])
+    plain = Contact(pair.psi, pair.tau0, pair.mu, pair.nu)
+    assert pair.upper_share == same.upper_share == upper_share(1.0, 0.3) == 0.5
+    for c in (pair, same):
+        for name in ("centre_displacement", "centre_velocity"):
+            np.testing.assert_array_equal(getattr(c, name)(tau), getattr(plain, name)(tau))
+            np.testing.assert_array_equal(getattr(c, "lower_" + name)(tau),
+                                          -getattr(plain, name)(tau))
+            np.testing.assert_array_equal(getattr(c.at(tau), name), getattr(plain, name)(tau))
+
+
+def test_steel_ball_on_pzt4_moves_0566_of_the_pair() -> None:
+    """The figure of docs/physics.md section 11.1: a steel ball on PZT-4 takes
+    2 lambda = 0.566 of the equivalent pair's centre motion, the PZT-4 face 1.434."""
+    c = Contact.from_physical(**SI, **SECOND)
+    pair = Contact(c.psi, c.tau0, c.mu, c.nu)
+    lam = ((2 - SI["nu"]) / SI["G"]) / ((2 - SI["nu"]) / SI["G"] + (2 - PZT.nu) / PZT.G)
+    assert c.upper_share == pytest.approx(lam, rel=1e-15)
+    assert 2 * lam == pytest.approx(0.566, abs=5e-4)
+    tau = 1.0
+    assert float(c.centre_displacement(tau)) == pytest.approx(
+        2 * lam * float(pair.centre_displacement(tau)), rel=1e-15)
+    with pytest.raises(ValueError, match="upper_share"):
+        Contact(1.0, 0.3, upper_share=1.0)
 
 
 ROD = Rod(half_length=0.02, thickness=4e-3, nu_rod=0.3, amplitude=10e-6, frequency=40e3)

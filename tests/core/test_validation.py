@@ -137,8 +137,9 @@ def test_scalars_and_shapes_broadcast() -> None:
 
 # ---- the domain table ------------------------------------------------------------------
 def test_domain_covers_every_parameter_and_input() -> None:
-    assert set(DOMAIN) == {"psi", "tau0", "mu", "nu", "tau", "r", "R", "G", "H", "u0", "h",
-                           "omega"}
+    assert set(DOMAIN) == {"psi", "tau0", "mu", "nu", "upper_share", "tau", "r", "R", "G",
+                           "H", "u0", "h", "omega"}
+    assert DOMAIN["upper_share"].describe() == "(0, 1)"
     assert DOMAIN["psi"] == Interval(0.0, 1e12)
     assert (DOMAIN["psi"].lo, DOMAIN["psi"].hi) == (0.0, 1e12)
     assert DOMAIN["nu"].describe() == "(-1, 0.5]"
