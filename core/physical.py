@@ -88,9 +88,15 @@ def upper_share(G: float, nu: float, G2: float | None = None, nu2: float | None 
 
 def dundurs_beta(G: float, nu: float, G2: float, nu2: float) -> float:
     """Dundurs' second constant beta = [(1 - 2 nu1)/G1 - (1 - 2 nu2)/G2] /
-    [2 ((1 - nu1)/G1 + (1 - nu2)/G2)] (dimensionless, in [-1/2, 1/2]): the coupling of
-    normal and tangential tractions that Goodman's approximation neglects. 0 for
-    identical bodies; it changes sign when the bodies are swapped."""
+    [2 ((1 - nu1)/G1 + (1 - nu2)/G2)] (dimensionless): the coupling of normal and
+    tangential tractions that Goodman's approximation neglects. 0 for identical bodies;
+    it changes sign when the bodies are swapped.
+
+    For fixed Poisson ratios beta is monotonic in G1 / G2, between -f(nu2) (body 1 rigid)
+    and f(nu1) (body 2 rigid), f(nu) = (1 - 2 nu) / (2 (1 - nu)), which falls from 3/4 at
+    nu = -1 to 0 at nu = 1/2. So over the domain (nu in (-1, 1/2]) |beta| < 3/4, and
+    |beta| <= 1/2 when both nu >= 0 (the bound usually quoted); an auxetic body reaches
+    beyond it (G2 = 1e3 Pa, nu2 = -0.9 against steel: beta = -0.737)."""
     num = (1.0 - 2.0 * nu) * G2 - (1.0 - 2.0 * nu2) * G
     return num / (2.0 * ((1.0 - nu) * G2 + (1.0 - nu2) * G))
 

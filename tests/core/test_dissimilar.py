@@ -90,6 +90,22 @@ def test_dundurs_beta() -> None:
     assert Contact.from_physical(**SI, G2=1e3, nu2=0.0).scales.beta_warning is not None
 
 
+def test_dundurs_beta_bound_over_the_domain() -> None:
+    """|beta| < 3/4 for nu in (-1, 1/2] (the bound (1 - 2 nu)/(2 (1 - nu)) of a body
+    against a rigid one tends to 3/4 as nu -> -1), and |beta| <= 1/2 when both nu >= 0."""
+    assert dundurs_beta(79.3e9, 0.29, 1e3, -0.9) == pytest.approx(-2.8 / 3.8, rel=1e-6)
+    extreme = dundurs_beta(1.0, math.nextafter(-1.0, 0.0), 1e13, 0.5)
+    assert 0.7499 < extreme < 0.75
+    rng = np.random.default_rng(7)
+    G = 10.0 ** rng.uniform(0, 13, (2, 20000))
+    nu = rng.uniform(-1, 0.5, (2, 20000))
+    beta = np.array([dundurs_beta(*row) for row in zip(G[0], nu[0], G[1], nu[1],
+                                                      strict=True)])
+    assert np.abs(beta).max() < 0.75
+    positive = (nu >= 0).all(axis=0)
+    assert np.abs(beta[positive]).max() <= 0.5
+
+
 def cerruti_centre(c: Contact, tau: float, G: float, nu: float) -> float:
     """The elastic displacement (m) of the surface point r = 0 of a half-space (G, nu)
     under the contact's traction at tau: Cerruti's point-force solution integrated over
