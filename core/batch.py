@@ -53,32 +53,131 @@ def _evaluate(q: int, psi: ArrayLike, tau0: ArrayLike, tau: ArrayLike, mu: Array
 
 def tangential_force(psi: ArrayLike, tau0: ArrayLike, tau: ArrayLike, mu: ArrayLike = 0.2,
                      nu: ArrayLike = 0.3) -> NDArray[np.float64]:
-    """T / T0 (eqs 38, 39): force on the upper sphere, positive along the drive."""
+    """T / T0 (eqs 38, 39) of every contact (psi, tau0) at the times tau.
+
+    Parameters
+    ----------
+    psi, tau0 : array_like
+        Contacts' drive ratios and starts of contact (``Contact``'s ranges), element-wise.
+    tau : array_like
+        Times omega t (rad), taken modulo 2 pi.
+    mu, nu : array_like, optional
+        Validated and part of the broadcast shape; they do not enter the result.
+
+    Returns
+    -------
+    ndarray
+        ``Contact(psi, tau0, mu, nu).tangential_force(tau)`` element-wise, bit for bit, as a new
+        array of the broadcast shape of (psi, tau0, tau, mu, nu).
+
+    See Also
+    --------
+    core.Contact.tangential_force : the definition, units and tested accuracy.
+    """
     return _evaluate(kernels.TANGENTIAL_FORCE, psi, tau0, tau, mu, nu)
 
 
 def normal_force(psi: ArrayLike, tau0: ArrayLike, tau: ArrayLike, mu: ArrayLike = 0.2,
                  nu: ArrayLike = 0.3) -> NDArray[np.float64]:
-    """P / P0 = (sin tau - sin tau0)^(3/2) (eq 9); also mu P / T0."""
+    """P / P0 (eq 9) of every contact (psi, tau0) at the times tau.
+
+    Parameters
+    ----------
+    psi, tau0 : array_like
+        Contacts' drive ratios and starts of contact (``Contact``'s ranges), element-wise.
+    tau : array_like
+        Times omega t (rad), taken modulo 2 pi.
+    mu, nu : array_like, optional
+        Validated and part of the broadcast shape; they do not enter the result.
+
+    Returns
+    -------
+    ndarray
+        ``Contact(psi, tau0, mu, nu).normal_force(tau)`` element-wise, bit for bit, as a new
+        array of the broadcast shape of (psi, tau0, tau, mu, nu).
+
+    See Also
+    --------
+    core.Contact.normal_force : the definition, units and tested accuracy.
+    """
     return _evaluate(kernels.NORMAL_FORCE, psi, tau0, tau, mu, nu)
 
 
 def contact_radius(psi: ArrayLike, tau0: ArrayLike, tau: ArrayLike, mu: ArrayLike = 0.2,
                    nu: ArrayLike = 0.3) -> NDArray[np.float64]:
-    """a / a* (eqs 7, 8)."""
+    """a / a* (eqs 7, 8) of every contact (psi, tau0) at the times tau.
+
+    Parameters
+    ----------
+    psi, tau0 : array_like
+        Contacts' drive ratios and starts of contact (``Contact``'s ranges), element-wise.
+    tau : array_like
+        Times omega t (rad), taken modulo 2 pi.
+    mu, nu : array_like, optional
+        Validated and part of the broadcast shape; they do not enter the result.
+
+    Returns
+    -------
+    ndarray
+        ``Contact(psi, tau0, mu, nu).contact_radius(tau)`` element-wise, bit for bit, as a new
+        array of the broadcast shape of (psi, tau0, tau, mu, nu).
+
+    See Also
+    --------
+    core.Contact.contact_radius : the definition, units and tested accuracy.
+    """
     return _evaluate(kernels.CONTACT_RADIUS, psi, tau0, tau, mu, nu)
 
 
 def stick_radius(psi: ArrayLike, tau0: ArrayLike, tau: ArrayLike, mu: ArrayLike = 0.2,
                  nu: ArrayLike = 0.3) -> NDArray[np.float64]:
-    """b / a* (eq 30): a in full stick, the stick disc in partial stick, else 0."""
+    """b / a* (eq 30) of every contact (psi, tau0) at the times tau.
+
+    Parameters
+    ----------
+    psi, tau0 : array_like
+        Contacts' drive ratios and starts of contact (``Contact``'s ranges), element-wise.
+    tau : array_like
+        Times omega t (rad), taken modulo 2 pi.
+    mu, nu : array_like, optional
+        Validated and part of the broadcast shape; they do not enter the result.
+
+    Returns
+    -------
+    ndarray
+        ``Contact(psi, tau0, mu, nu).stick_radius(tau)`` element-wise, bit for bit, as a new
+        array of the broadcast shape of (psi, tau0, tau, mu, nu).
+
+    See Also
+    --------
+    core.Contact.stick_radius : the definition, units and tested accuracy.
+    """
     return _evaluate(kernels.STICK_RADIUS, psi, tau0, tau, mu, nu)
 
 
 def phase(psi: ArrayLike, tau0: ArrayLike, tau: ArrayLike, mu: ArrayLike = 0.2,
           nu: ArrayLike = 0.3) -> NDArray[np.int_]:
-    """Phase code (``core.Phase``): 0 no contact, 1 full stick, 2 slip, 3 partial stick,
-    4 counter-slip."""
+    """The phase code (``core.Phase``) of every contact (psi, tau0) at the times tau.
+
+    Parameters
+    ----------
+    psi, tau0 : array_like
+        Contacts' drive ratios and starts of contact (``Contact``'s ranges), element-wise.
+    tau : array_like
+        Times omega t (rad), taken modulo 2 pi.
+    mu, nu : array_like, optional
+        Validated and part of the broadcast shape; they do not enter the result.
+
+    Returns
+    -------
+    ndarray
+        ``Contact(psi, tau0, mu, nu).phase(tau)`` element-wise, bit for bit, as a new
+        array of the broadcast shape of (psi, tau0, tau, mu, nu).
+
+    See Also
+    --------
+    core.Contact.phase : the definition, units and tested accuracy.
+    """
     return _evaluate(kernels.PHASE, psi, tau0, tau, mu, nu).astype(int)
 
 

@@ -12,9 +12,11 @@ so partial stick ends at w = k, i.e. tau1 = pi/2 + 2 arcsin(k sin(e/2)) (eq 31, 
 that keeps its digits for huge psi, where tau1 - pi/2 ~ 2 sqrt((1 - sin tau0)/psi), eq 35).
 Scales: traction in mu p*, force in T0 (eq 37), radii in a*.
 
-The formulas of one time point or one contact are numba kernels (``@njit(cache=True, nogil=True)``),
-inlined by the compiled loops of ``core.kernels``; ``impulse_ratio`` is their element-wise
-form over arrays.
+The formulas of one time point (phase, b^2, T) are numba kernels inlined by the compiled
+loops of ``core.kernels``; ``traction`` is numpy over (r, tau). Eq 41 is compiled three
+ways, the same values bit for bit: ``impulse_ratio_float`` (one contact),
+``impulse_ratio_of_psis`` (many psi at one tau0, a SIMD pass) and the ufunc
+``impulse_ratio`` (arrays of psi and tau0).
 """
 
 from __future__ import annotations

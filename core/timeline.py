@@ -1,13 +1,11 @@
 """One contact at an array of times: each quantity computed on first use, kept for reuse.
 
-``Contact.at(tau)`` returns a ``Timeline``. Each quantity of eqs 6-43 is one compiled
-pass over the times (``core.kernels.rows``: the clock w, one sine per time, and the
-formulas of w fused, without temporaries); the centre's motion is derived from the
-clock, a^2 and the phase already computed. ``Contact``'s single-quantity methods are
-this class used once.
-
-Units as in ``Contact``: forces in T0 (eq 37) or P0 = T0 / mu, radii in a*, displacement
-in u0, velocity in omega u0. Arrays have the shape of tau, are zero (never nan) outside
+``Contact.at(tau)`` returns a ``Timeline``; ``Contact``'s functions of time are this
+class used once, and are where each quantity is documented. The clock, phase, approach,
+radii and forces are each one compiled pass over the times (``core.kernels.rows``: the
+clock w, one sine per time, and the formulas of w fused, without temporaries); the
+centre's motion is numpy, from the clock, a^2 and the phase already computed
+(``core.kinematics``). Arrays have the shape of tau, are zero (never nan) outside
 contact, and are read-only: they are shared between the quantities derived from them.
 """
 
@@ -33,12 +31,20 @@ def _fixed(a: NDArray) -> NDArray:
 @dataclass(frozen=True, eq=False)
 class Timeline:
     """The contact (psi, s = sin(e/2) of ``core.clock``) at the times ``tau`` (radians, a
-    float64 array).
+    float64 array): what ``Contact.at`` returns.
+
+    Each attribute is the Contact method of the same name at ``tau`` (definitions, units and
+    accuracy are documented there), computed on first use and kept.
 
     ``tau`` is held, not copied: change it and ask again, and the quantities already
     computed will not follow (make a new Timeline instead).  ``passes`` holds each pass
     made, flat, by quantity code: Timelines of the same times in other shapes may share
-    it (``Contact.at`` does, for one time)."""
+    it (``Contact.at`` does, for one time). ``upper_share`` is ``Contact.upper_share``.
+
+    See Also
+    --------
+    Contact.at : the public way to make one.
+    """
 
     tau: NDArray[np.float64]
     psi: float
@@ -59,43 +65,43 @@ class Timeline:
 
     @cached_property
     def clock(self) -> NDArray[np.float64]:
-        """w = sin((tau - pi/2)/2) / sin(e/2): -1 at tau0, 0 at pi/2, +1 at pi - tau0."""
+        """w = sin((tau - pi/2)/2) / sin(e/2) (``core.clock``): -1 at tau0, 0 at pi/2, +1 at
+        pi - tau0."""
         return self._pass(kernels.CLOCK)
 
     @cached_property
     def phase(self) -> NDArray[np.int_]:
-        """Phase code (``core.Phase``): 0 no contact, 1 full stick, 2 slip, 3 partial
-        stick, 4 counter-slip."""
+        """``Contact.phase`` at ``tau``."""
         return _fixed(self._pass(kernels.PHASE).astype(int))
 
     @cached_property
     def approach(self) -> NDArray[np.float64]:
-        """alpha / (H - h) = (sin tau - sin tau0) / (1 - sin tau0) (eq 8); equals a^2 / a*^2."""
+        """``Contact.approach`` at ``tau``."""
         return self._pass(kernels.APPROACH)
 
     @cached_property
     def contact_radius(self) -> NDArray[np.float64]:
-        """a / a* (eqs 7, 8)."""
+        """``Contact.contact_radius`` at ``tau``."""
         return self._pass(kernels.CONTACT_RADIUS)
 
     @cached_property
     def stick_radius_squared(self) -> NDArray[np.float64]:
-        """(b / a*)^2 (eq 30)."""
+        """(b / a*)^2 (eq 30), the square of ``stick_radius``, exact to ~1e-16."""
         return self._pass(kernels.STICK_RADIUS_SQUARED)
 
     @cached_property
     def stick_radius(self) -> NDArray[np.float64]:
-        """b / a* (eq 30): a in full stick, the stick disc in partial stick, else 0."""
+        """``Contact.stick_radius`` at ``tau``."""
         return self._pass(kernels.STICK_RADIUS)
 
     @cached_property
     def normal_force(self) -> NDArray[np.float64]:
-        """P / P0 = (sin tau - sin tau0)^(3/2) (eq 9); also mu P / T0."""
+        """``Contact.normal_force`` at ``tau``."""
         return self._pass(kernels.NORMAL_FORCE)
 
     @cached_property
     def tangential_force(self) -> NDArray[np.float64]:
-        """T / T0 (eqs 38, 39): force on the upper sphere, positive along the drive."""
+        """``Contact.tangential_force`` at ``tau``."""
         return self._pass(kernels.TANGENTIAL_FORCE)
 
     @cached_property
@@ -111,23 +117,23 @@ class Timeline:
 
     @cached_property
     def centre_displacement(self) -> NDArray[np.float64]:
-        """u2 / u0, displacement of the contact centre of the upper body (eq 43)."""
+        """``Contact.centre_displacement`` at ``tau``."""
         return _fixed(kinematics.own_motion(self._half_relative_displacement,
                                             self.upper_share))
 
     @cached_property
     def centre_velocity(self) -> NDArray[np.float64]:
-        """v2 / (omega u0), velocity of the contact centre of the upper body (eq 42)."""
+        """``Contact.centre_velocity`` at ``tau``."""
         return _fixed(kinematics.own_motion(self._half_relative_velocity, self.upper_share))
 
     @cached_property
     def lower_centre_displacement(self) -> NDArray[np.float64]:
-        """u1 / u0, elastic displacement of the lower body's contact centre."""
+        """``Contact.lower_centre_displacement`` at ``tau``."""
         return _fixed(0.0 - kinematics.own_motion(self._half_relative_displacement,
                                                   1.0 - self.upper_share))
 
     @cached_property
     def lower_centre_velocity(self) -> NDArray[np.float64]:
-        """v1 / (omega u0) - cos tau, elastic velocity of the lower body's contact centre."""
+        """``Contact.lower_centre_velocity`` at ``tau``."""
         return _fixed(0.0 - kinematics.own_motion(self._half_relative_velocity,
                                                   1.0 - self.upper_share))

@@ -140,3 +140,15 @@ def centre_displacement(psi: float, tau: float, tau0: float) -> mp.mpf:
         if ph == 3:
             return (p * s + 1 - p - s0) / (2 * p)
         return (1 if ph == 2 else -1) * (s - s0) / (2 * p)
+
+
+def centre_velocity(psi: float, tau: float, tau0: float) -> mp.mpf:
+    """v2 / (omega u0), eq 42 (cos tau / 2 in full stick)."""
+    ph = phase(psi, tau, tau0)
+    with mp.workdps(DPS):
+        c, p = mp.cos(reduced(tau, tau0)), _f(psi)
+        if ph in (1, 3):
+            return c / 2
+        if ph == 0:
+            return mp.mpf(0)
+        return (1 if ph == 2 else -1) * c / (2 * p)

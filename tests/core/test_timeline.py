@@ -15,7 +15,8 @@ from hypothesis import strategies as st
 from core import Contact, Phase, batch, curve
 
 QUANTITIES = ("clock", "phase", "approach", "contact_radius", "stick_radius", "normal_force",
-              "tangential_force", "centre_displacement", "centre_velocity")
+              "tangential_force", "centre_displacement", "centre_velocity",
+              "lower_centre_displacement", "lower_centre_velocity")
 CASES = [(0.4, math.pi / 6), (1.0, -0.9), (2.414, -0.9), (28.35, 1.5), (1e6, 0.3)]
 
 
