@@ -11,7 +11,7 @@ every contact when tau has one row), written to out[r]; all arrays C-contiguous.
 
 Two habits for speed on short rows (a contact on a few tens of points, as a DEM rule
 computes it): arrays are indexed in place, never sliced into views (a view costs two
-reference-count updates, 10-15 ns, as much as a few points); and a loop over times whose
+reference-count updates, as much as a few points); and a loop over times whose
 formula branches on psi <= 1 is written twice under one test of psi, so that each copy
 compiles without the other's terms (full stick then skips partial stick's division and
 second square root). The values are the same, bit for bit.

@@ -149,7 +149,7 @@ DOMAIN: dict[str, Interval] = {
 #: pi/2 below ~1e-62, where the balance cannot be solved).
 PHI_MIN = 1e-24
 #: Fewest and most springs and time steps of one MDR contact, their largest product
-#: (about 0.25 s of work), and the largest work of one call (speeds x springs x steps).
+#: (1e8 spring-steps), and the largest work of one call (speeds x springs x steps).
 MDR_WORK_MAX = 10**8
 CALL_WORK_MAX = 10**9
 

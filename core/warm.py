@@ -1,8 +1,8 @@
 """Load (or, in a fresh environment, compile) every compiled kernel the explorer runs.
 
 numba compiles a kernel on its first call and caches it on disk (``NUMBA_CACHE_DIR``, or
-``__pycache__`` next to the sources): seconds the first time (the closed form ~3 s, MDR
-and the annulus ~4-5 s each, the DEM rules ~1 s), tens of ms from the cache.
+``__pycache__`` next to the sources): seconds the first time, far less from the cache
+(time ``python -m core.warm`` with an empty ``NUMBA_CACHE_DIR``, then again).
 ``warm()`` makes that first call with tiny inputs for the closed form, ``warm_methods()``
 for the methods of ``core.numerics`` and the moving rotor of ``core.motor`` (the Methods
 and Motor cards), so that a server can load the closed form before it takes its first page and the

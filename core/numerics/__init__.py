@@ -67,9 +67,10 @@ INTERACTIVE_RESOLUTION: dict[str, int] = {
     "quad": 8,
     "gauss_legendre": 256,
 }
-"""Resolution per method for the app's live overlay: at most a few ms per solve
-(compiled kernels; quad ~50 ms) over psi in [0.3, 1e4] x tau0 in [-1.4, 1.569], and a
-few hundred time points per curve (the DEM rules 2000)."""
+"""Resolution per method for the app's live overlay: short solves of the compiled kernels
+(scipy's adaptive quad the slowest) over psi in [0.3, 1e4] x tau0 in
+[-1.4, 1.569], and a few hundred time points per curve (the DEM rules 2000);
+``python -m benchmarks.core.methods`` times them."""
 
 STEPPED = ("mdr", "annulus")
 """Methods whose time steps can be chosen apart from their resolution (``steps=``)."""
