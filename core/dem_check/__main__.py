@@ -5,6 +5,8 @@
     python -m core.dem_check score FILE.csv --case NAME   # score a history (tau, T, P)
     python -m core.dem_check deck --case NAME --model M   # the LAMMPS input deck
     python -m core.dem_check lammps --case NAME --model M --steps N   # run lmp, score it
+    python -m core.dem_check impact --test 4 --material alumina --model mindlin --json
+                                                          # Chung & Ooi's impacts (docs/impact.md)
 
 A bad argument or a malformed file exits with status 2 and one line naming the problem.
 """
@@ -15,7 +17,7 @@ import argparse
 import json
 import sys
 
-from core.dem_check import lammps
+from core.dem_check import impact_cli, lammps
 from core.dem_check.case import CASES, Case, case_named
 from core.dem_check.exact import dissipated_energy
 from core.dem_check.score import DemScore, score
@@ -73,8 +75,12 @@ def main(argv: list[str] | None = None) -> int:
             p.add_argument("--steps", type=int, default=20000)
         if name != "deck":
             p.add_argument("--json", action="store_true", help="the score as JSON")
+    p = sub.add_parser("impact", help="an impact test of Chung & Ooi: exact and LAMMPS")
+    impact_cli.add_arguments(p)
     args = parser.parse_args(argv)
     try:
+        if args.command == "impact":
+            return impact_cli.main(args)
         if args.command == "cases":
             for name, c in CASES.items():
                 print(f"{name:15s} psi = {c.psi:<10.6g} tau0 = {c.tau0:<8.5g} impulse ratio "

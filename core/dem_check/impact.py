@@ -183,7 +183,8 @@ def check_incidences(values: ArrayLike) -> tuple[float, ...]:
         raise ValueError("incidence must be a list of 1 to 1000 angles (deg)")
     bad = np.flatnonzero(~(np.isfinite(a) & (a >= 0) & (a < 90)))
     if bad.size:
-        raise ValueError(f"incidence[{bad[0]}] = {a[bad[0]]!r} deg is outside [0, 90)")
+        raise ValueError(f"incidence[{bad[0]}] = {float(a[bad[0]])!r} deg is outside "
+                         "[0, 90)")
     return tuple(float(v) for v in a)
 
 
