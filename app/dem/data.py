@@ -31,7 +31,7 @@ DEFAULT_MODELS = ("mindlin", "mindlin/force")
 #: Points of the exact curve over the contact (`core.dem_check.exact`).
 EXACT_POINTS = 1000
 #: The largest upload read, in bytes (2 MiB: about 33,000 rows of three 17-digit
-#: numbers, read in about 0.2 s). The browser refuses a larger file before sending it
+#: numbers). The browser refuses a larger file before sending it
 #: and sends a smaller one in pieces (`app.dem.upload`), each well under the 512 KiB
 #: websocket message cap of `app.serve`.
 MAX_UPLOAD_BYTES = 2 * 1024 * 1024

@@ -21,8 +21,8 @@ DEFAULT_METHODS = ("mdr", "lammps_mindlin")
 
 #: The resolutions offered, as factors of each method's interactive default
 #: (`core.numerics.INTERACTIVE_RESOLUTION`), and the most a method is given whose cost
-#: grows faster than its resolution: a solve takes at most ~0.2 s (the annulus at 128
-#: rings; MDR at 6400 springs ~25 ms), so a client's choice bounds the work.
+#: grows faster than its resolution (the annulus, MDR), so that a client's choice bounds
+#: the work of one solve (``python -m benchmarks.core.methods`` times the methods).
 RESOLUTION_FACTORS = {"¼ × default": 0.25, "½ × default": 0.5, "default": 1.0,
                       "2 × default": 2.0, "4 × default": 4.0, "8 × default": 8.0,
                       "16 × default": 16.0}
@@ -49,8 +49,8 @@ def resolution(name: str, factor: float) -> int:
 def prepare() -> None:
     """Compute once, at the server's start, what a method would set up on its first run
     at any offered resolution: the Gauss-Legendre nodes (cached per n by
-    `core.numerics.quadrature`; 4,096 of them take ~0.35 s, which a visitor's first run
-    at 16 x would otherwise wait for)."""
+    `core.numerics.quadrature`; the largest sets, 4,096 nodes, are slow enough to compute
+    that a visitor's first run at 16 x would otherwise wait for them)."""
     if numerics is None:
         return
     from core.numerics.quadrature import gauss_legendre_nodes

@@ -1,6 +1,6 @@
 """Page loads per client address, refused before any session is made.
 
-A page load's HTML costs the server a few tens of ms of CPU (a session and its shell,
+A page load's HTML costs the server CPU (a session and its shell,
 and Panel's rendering of the page: `app.page.guard.serve_page`), most of it on the event
 loop that serves every open session.  A script fetching the page in a loop would keep
 the process busy and slow every lecture on it.  `PAGES` gives each client address a

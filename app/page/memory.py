@@ -1,8 +1,8 @@
 """When the server's cyclic garbage collector walks the open sessions: rarely.
 
 A page's document is ~37,000 objects that Python's cyclic garbage collector tracks, and
-a full collection walks every one alive, holding the interpreter: with 10 sessions open
-it takes ~0.2-0.4 s, with 40 ~0.5-1.4 s on this project's 2-core machines, during which
+a full collection walks every one alive, holding the interpreter for a time that grows
+with the sessions open (``python -m benchmarks.app.gc_pause`` measures it), during which
 the process serves no one.  Panel collects in full 5 s after a session closes, and
 Python by itself whenever the objects that survived its younger collections have grown
 by a quarter: unmanaged, a class joining or leaving stalls every session on the process
@@ -20,16 +20,17 @@ open sessions' memory held by closed ones.  (A build's own garbage, frozen with 
 a few hundred objects; the next sweep takes it.)
 
 A sweep's collection walks everything, the modules' objects that the server froze at
-its start among them (~130 ms on these machines): with fewer than `freeze_from`
+its start among them: with fewer than `freeze_from`
 sessions open, builds freeze nothing and a close needs no sweep, so that a collection
-walks the few open sessions only (~10 ms each; and the modules' objects too once a
+walks the few open sessions only (and the modules' objects too once a
 sweep has unfrozen them, until a build with `freeze_from` open freezes them again).
 
 Python's own full collections come rarely too (`THRESHOLDS`, set by `app.serve`): a
 build's objects survive the young collections, and with Python's thresholds a page
 loaded every second or so set off a full walk of the unfrozen sessions about every
-other build (13-14 collections, 1.2-1.3 s of held interpreter, in a 20-s page-load loop
-of ~20 builds; 2-3, 0.24-0.43 s, with `THRESHOLDS`).  What the sessions leave is
+other build, and with `THRESHOLDS` a few times a class (``python -m
+benchmarks.app.gc_pause`` counts the full collections Python runs while a class joins,
+and their time).  What the sessions leave is
 reclaimed by Panel's collection after each close, whatever the thresholds.
 """
 
