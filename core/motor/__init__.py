@@ -16,6 +16,8 @@ One concept per module:
   (``wear_depth``), along the rod (``wear_along_rod``) and for a moving rotor
   (``moving_wear_rate``).
 
+- ``designs``: the figures of merit of many designs in one call (``design_merits``,
+  SI; ``contact_merits``, dimensionless), equal to the scalar API design by design.
 - ``moving_rotor``: the rotor turning at a steady surface speed V (section 10.4): thrust
   ratio, input and output power, friction loss and efficiency per contact (psi, tau0),
   by the method of dimensionality reduction (``core.numerics.mdr``) under the drive
@@ -31,6 +33,7 @@ One concept per module:
 """
 
 from core.motor.balance import PHI_MAX
+from core.motor.designs import ContactMerits, DesignMerits, contact_merits, design_merits
 from core.motor.load import OperatingPoint, StartUp, operating_point, operating_speed, start_up
 from core.motor.motor import Motor, MotorProfile
 from core.motor.moving_rotor import (
@@ -48,6 +51,8 @@ from core.motor.wear import WearProfile, moving_wear_rate, wear_along_rod, wear_
 __all__ = [
     "PHI_MAX",
     "BestEfficiency",
+    "ContactMerits",
+    "DesignMerits",
     "Motor",
     "MotorProfile",
     "MovingRotor",
@@ -56,6 +61,8 @@ __all__ = [
     "StartUp",
     "WearProfile",
     "best_efficiency",
+    "contact_merits",
+    "design_merits",
     "full_slip_speed",
     "moving_rotor",
     "moving_wear_rate",
