@@ -108,10 +108,10 @@ def cattaneo(nu: float, load: float, grid: int, *, mu: float = 0.4, steps: int =
 
         if target == 0.0:
             continue
-        w_hi = W + 2.0 * scale
-        W = brentq(excess, W, w_hi, xtol=1e-13 * scale, rtol=1e-13)
-        state = trial.get(W) or step(op, h0, prev, mu, (W - prev.ux.mean() * 0.0, 0.0),
-                                     load=P, settings=settings)
+        w_prev = W
+        W = brentq(excess, w_prev, w_prev + 2.0 * scale, xtol=1e-13 * scale, rtol=1e-13)
+        state = trial[W] if W in trial else step(op, h0, prev, mu, (W - w_prev, 0.0),
+                                                 load=P, settings=settings)
     fx = float(state.qx.sum()) * g.area
     shift_m = mindlin_shift(load, mu, pair)
     return CattaneoResult(

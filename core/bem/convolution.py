@@ -93,22 +93,26 @@ class Operators:
         return self.beta != 0.0
 
     def _fwd(self, f: Array) -> Array:
+        """The spectrum of f (..., M, M) zero-padded to the FFT size."""
         return sfft.rfft2(f, s=(self._length, self._length))
 
     def _back(self, s: Array) -> Array:
+        """The first M x M values of the inverse of a spectrum (..., L, L // 2 + 1)."""
         m = self.grid.size
-        return sfft.irfft2(s, s=(self._length, self._length))[:m, :m]
+        return sfft.irfft2(s, s=(self._length, self._length))[..., :m, :m]
 
     def normal(self, p: Array) -> Array:
         """u_n of a pressure field p alone (c K * p)."""
         return self._back(self._spectra["nn"] * self._fwd(p))
 
     def tangential(self, qx: Array, qy: Array) -> tuple[Array, Array]:
-        """(u_x, u_y) of shear tractions alone."""
+        """(u_x, u_y) of shear tractions alone (both components in one batched forward
+        and one batched inverse FFT)."""
         s = self._spectra
-        fx, fy = self._fwd(qx), self._fwd(qy)
-        return (self._back(s["xx"] * fx + s["xy"] * fy),
-                self._back(s["xy"] * fx + s["yy"] * fy))
+        f = self._fwd(np.stack((qx, qy)))
+        fx, fy = f[0], f[1]
+        u = self._back(np.stack((s["xx"] * fx + s["xy"] * fy, s["xy"] * fx + s["yy"] * fy)))
+        return u[0], u[1]
 
     def normal_from_shear(self, qx: Array, qy: Array) -> Array:
         """The coupling part of u_n: c beta (C_x * q_x + C_y * q_y); zeros when beta = 0."""

@@ -1,0 +1,116 @@
+"""The closed form's error against the boundary-element referee, mapped over the material
+pair for the paper's loading: identical bodies over nu in [0, 0.5) (Cattaneo-Mindlin's
+neglected transverse traction), and dissimilar ones over Dundurs' beta (Goodman's
+neglected coupling): a sweep of beta at fixed nu and every pair of ``core.PRESETS``
+materials (body 1, the held one, first in the table's order; beta and nu_eq from
+``core.physical``).
+
+Every row is run on two grids; the difference between them is the row's grid-convergence
+estimate (the error of the coarser figure, an upper estimate for the finer one).
+"""
+
+from __future__ import annotations
+
+import csv
+import itertools
+import math
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+from core.bem.pair import Pair
+from core.bem.paper import run_paper
+from core.materials import PRESETS
+
+#: Poisson ratios of the identical-body rows, and the beta sweep (at SWEEP_NU).
+NUS = (0.0, 0.1, 0.2, 0.3, 0.4, 0.45, 0.49)
+BETAS = (0.05, 0.1, 0.2, 0.3, 0.4, 0.45)
+SWEEP_NU = 0.3
+
+
+@dataclass(frozen=True)
+class MapRow:
+    """One material pair: its label, nu (effective), beta, and for the fine grid the worst
+    |T - T_closed| / T0, the impulse ratio's error (referee minus eq 41), the dissipation
+    ratio (referee over closed form; nan for psi <= 1), the worst stick-radius error
+    (units a*), each with ``*_grid`` = |fine - coarse|; the two grids and the seconds."""
+
+    label: str
+    nu: float
+    beta: float
+    worst_T_error: float
+    worst_T_error_grid: float
+    impulse_error: float
+    impulse_error_grid: float
+    dissipation_ratio: float
+    dissipation_ratio_grid: float
+    stick_error: float
+    stick_error_grid: float
+    coarse: int
+    fine: int
+    seconds: float
+
+    def as_dict(self) -> dict:
+        """The row as a dict with nan as None (JSON null)."""
+        return {k: (None if isinstance(v, float) and math.isnan(v) else v)
+                for k, v in asdict(self).items()}
+
+
+def cases() -> list[tuple[str, Pair]]:
+    """(label, pair) of every row: identical bodies over NUS, the beta sweep, the presets'
+    pairs."""
+    rows = [(f"identical nu={nu:g}", Pair(nu)) for nu in NUS]
+    rows += [(f"sweep nu={SWEEP_NU:g} beta={b:g}", Pair(SWEEP_NU, b)) for b in BETAS]
+    for a, b in itertools.combinations(PRESETS, 2):
+        m1, m2 = PRESETS[a], PRESETS[b]
+        rows.append((f"{a} on {b}", Pair.of(m1.G, m1.nu, m2.G, m2.nu)))
+    return rows
+
+
+def map_row(label: str, pair: Pair, *, grids: tuple[int, int] = (32, 64), steps: int = 200,
+            psi: float = 2.414213562373095, tau0: float = math.pi / 6,
+            mu: float = 0.2) -> MapRow:
+    """The row of one pair: the paper's loading on two grids (``core.bem.paper``)."""
+    runs = [run_paper(psi, tau0, pair.nu, beta=pair.beta, mu=mu, grid=n, steps=steps)
+            for n in grids]
+    c, f = runs
+
+    def both(get):  # the fine figure and its grid estimate
+        return get(f), abs(get(f) - get(c))
+
+    t, tg = both(lambda r: r.worst_T_error)
+    i, ig = both(lambda r: r.impulse_ratio - r.impulse_ratio_closed)
+    d, dg = both(lambda r: r.dissipation_ratio)
+    s, sg = both(lambda r: r.worst_stick_error)
+    return MapRow(label, pair.nu, pair.beta, t, tg, i, ig, d, dg, s, sg, grids[0], grids[1],
+                  c.seconds + f.seconds)
+
+
+def error_map(*, grids: tuple[int, int] = (32, 64), steps: int = 200,
+              psi: float = 2.414213562373095, tau0: float = math.pi / 6,
+              mu: float = 0.2) -> list[MapRow]:
+    """Every row of ``cases``."""
+    return [map_row(label, pair, grids=grids, steps=steps, psi=psi, tau0=tau0, mu=mu)
+            for label, pair in cases()]
+
+
+def write_csv(rows: list[MapRow], path: str | Path) -> None:
+    """The rows as CSV (a header of the field names)."""
+    with open(path, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(asdict(rows[0])))
+        w.writeheader()
+        for r in rows:
+            w.writerow(asdict(r))
+
+
+def beta_threshold(rows: list[MapRow], level: float = 0.01) -> float:
+    """The |beta| at which the sweep's worst T error first reaches ``level`` (units T0),
+    by linear interpolation in |beta| between the sweep's rows; inf when it never does
+    within the sweep."""
+    sweep = sorted((abs(r.beta), r.worst_T_error) for r in rows if r.label.startswith("sweep"))
+    base = next((r.worst_T_error for r in rows if r.label == f"identical nu={SWEEP_NU:g}"),
+                0.0)
+    sweep = [(0.0, base), *sweep]
+    for (b0, e0), (b1, e1) in itertools.pairwise(sweep):
+        if e0 < level <= e1:
+            return b0 + (level - e0) * (b1 - b0) / (e1 - e0)
+    return math.inf
