@@ -20,7 +20,7 @@
 ARG BASE=python:3.12-slim
 ARG BUILD_BASE=${BASE}
 
-# ---- deps: /opt/venv with the dependencies of the project and its app extra -
+# ---- deps: /opt/venv with the dependencies of the project, its app and study extras
 FROM ${BUILD_BASE} AS deps
 ENV PIP_NO_CACHE_DIR=1 \
     PIP_DISABLE_PIP_VERSION_CHECK=1 \
@@ -35,7 +35,7 @@ COPY pyproject.toml constraints.txt ./
 RUN python3 -c 'import sys; sys.exit(sys.version_info < (3, 12))' \
     || { echo "error: BASE must provide python3 >= 3.12" >&2; exit 1; } \
     && python3 -m venv /opt/venv \
-    && /opt/venv/bin/python -c "import tomllib; p = tomllib.load(open('pyproject.toml', 'rb'))['project']; print('\n'.join(p['dependencies'] + p['optional-dependencies']['app']))" > requirements.txt \
+    && /opt/venv/bin/python -c "import tomllib; p = tomllib.load(open('pyproject.toml', 'rb'))['project']; print('\n'.join(p['dependencies'] + p['optional-dependencies']['app'] + p['optional-dependencies']['study']))" > requirements.txt \
     && /opt/venv/bin/pip install --no-cache-dir -c constraints.txt -r requirements.txt \
     && find /opt/venv -depth -type d -name tests -path '*/site-packages/*/*' -exec rm -rf {} + \
     && /opt/venv/bin/pip uninstall --yes --quiet pip \

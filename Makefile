@@ -20,7 +20,7 @@ $(VENV)/.installed: pyproject.toml constraints.txt
 	@echo "using $(PYTHON) ($$($(PYTHON) --version))"
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -c constraints.txt -e '.[app,test,bench]'
+	$(PY) -m pip install --quiet -c constraints.txt -e '.[app,test,bench,study]'
 	@touch $@
 
 venv: $(VENV)/.installed
@@ -79,7 +79,7 @@ docker-smoke:
 # with the newest versions pyproject allows, frozen into constraints.txt.
 lock:
 	rm -rf .venv-lock && $(PYTHON) -m venv .venv-lock
-	.venv-lock/bin/pip install --quiet -e '.[app,test,bench]'
+	.venv-lock/bin/pip install --quiet -e '.[app,test,bench,study]'
 	{ sed -n '1,/^$$/p' constraints.txt | grep '^#'; .venv-lock/bin/pip freeze --exclude-editable | grep -v '^-e'; } > constraints.txt.new
 	mv constraints.txt.new constraints.txt && rm -rf .venv-lock
 
