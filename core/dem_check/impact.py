@@ -16,7 +16,10 @@ Hertz's force and Mindlin's k_t scale with them); what remains is the tilt of th
 centres as the sphere slides (slide / R2 ~ 1e-6 rad). The pair's moduli are given
 directly: 2 E* (1 - nu^2) with the pair's nu makes LAMMPS' E_eff = E* and G_eff = G_e
 for a rigid target of the sphere's material or for two identical spheres (the cases of
-Chung & Ooi); other pairs are refused. LAMMPS takes the torque arm as R1 - delta / 2 (the
+Chung & Ooi); other pairs are refused. Normal damping for e < 1: LAMMPS' ``damping tsuji``
+given the input that makes its normal impact rebound with e (``lammps_tsuji_input``), so
+that both codes have the same normal restitution and the scores measure the tangential
+models. LAMMPS takes the torque arm as R1 - delta / 2 (the
 small-strain reference takes R1), a difference of order alpha* / R1 in the spin (1e-3 in
 test 4).
 """
@@ -29,15 +32,17 @@ import subprocess
 import tempfile
 import time
 from dataclasses import dataclass, field
+from functools import lru_cache
 from importlib.resources import files
 from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy.optimize import brentq
 
 from core.dem_check.impact_cases import impact_test
 from core.dem_check.lammps import MODELS, LammpsFailed, _check_model, find_lmp
-from core.impact import Impact, solve
+from core.impact import Impact, dashpot, solve, tsuji_coefficient
 
 FLAT_RADIUS = 1e4  # the held sphere standing for a flat, in sphere radii
 HERTZ_TIME = 2.943195  # elastic Hertz contact time in alpha* / v_n
@@ -46,15 +51,30 @@ QUANTITIES = ("tangential_cor", "rebound_spin", "rebound_angle", "contact_point_
               "normal_cor", "contact_time")
 
 
+def tsuji_input(e: float, springs: int = 2000, tol: float = 1e-9) -> float:
+    """The restitution to give LAMMPS' ``damping tsuji`` so that its dashpot is the
+    reference's for e: LAMMPS turns its input into the factor c by Tsuji's polynomial
+    (``core.impact.tsuji_coefficient``), which misses the e it is given (0.98 -> 0.9863,
+    0.5 -> 0.616 in these runs); the input whose polynomial value is the reference's
+    c = gamma / (5/4)^(1/2) (``core.impact.dashpot``) makes both codes one normal model,
+    so that the scores measure the tangential models. 1 for e = 1."""
+    if e >= 1.0:
+        return 1.0
+    c = dashpot(e, springs, tol) / math.sqrt(1.25)
+    return float(brentq(lambda x: tsuji_coefficient(x) - c, 0.0, 1.0, xtol=1e-15))
+
+
 def template() -> str:
     """The impact deck as shipped."""
     return files("core.dem_check").joinpath("impact_deck.in").read_text()
 
 
-def deck_values(impact: Impact, model: str = "mindlin", steps: int = DEFAULT_STEPS
-                ) -> dict[str, str]:
+def deck_values(impact: Impact, model: str = "mindlin", steps: int = DEFAULT_STEPS,
+                e_input: float | None = None) -> dict[str, str]:
     """The deck's variables for ``impact``: geometry, the pair's moduli (module
-    docstring), velocities, time step (the Hertz contact time / steps) and run length."""
+    docstring), velocities, time step (the Hertz contact time / steps), run length and
+    the restitution given to ``damping tsuji`` (``e_input``; ``tsuji_input(e)`` when
+    None)."""
     _check_model(model)
     if isinstance(steps, bool) or not isinstance(steps, int) or not 50 <= steps <= 10**6:
         raise ValueError(f"steps must be an integer in [50, 1000000], got {steps!r}")
@@ -71,19 +91,22 @@ def deck_values(impact: Impact, model: str = "mindlin", steps: int = DEFAULT_STE
     kt = 8.0 * impact.G_e * a_max * comp
     dt = HERTZ_TIME * impact.time_scale / steps
     rho2 = t.material.density if t.free else 1e3 * m1.density
+    e_in = float(tsuji_input(impact.e) if e_input is None else e_input)
     return {"R1": repr(impact.radius), "rho1": repr(m1.density), "R2": repr(R2),
             "rho2": repr(rho2), "free": "1" if t.free else "0", "Eeff": repr(Eeff),
-            "nu": repr(nu), "mu": repr(impact.mu), "e": repr(impact.e), "model": model,
+            "nu": repr(nu), "mu": repr(impact.mu), "e": repr(e_in),
+            "model": model,
             "kt": repr(kt) if model == "linear_history" else "NULL",
             "vx": repr(impact.vx), "vz": repr(impact.vz), "w": repr(impact.w),
             "vx2": repr(impact.vx2), "vz2": repr(impact.vz2), "w2": repr(impact.w2),
             "dt": repr(dt), "steps": str(int(1.4 * steps) + 10), "out": "impact.txt"}
 
 
-def deck(impact: Impact, model: str = "mindlin", steps: int = DEFAULT_STEPS) -> str:
+def deck(impact: Impact, model: str = "mindlin", steps: int = DEFAULT_STEPS,
+         e_input: float | None = None) -> str:
     """The input deck of ``impact``: the template with its ``index`` defaults set."""
     text = template()
-    for name, value in deck_values(impact, model, steps).items():
+    for name, value in deck_values(impact, model, steps, e_input).items():
         text, n = re.subn(rf"^(variable {name}\s+index )\S+", rf"\g<1>{value}", text,
                           count=1, flags=re.M)
         if n != 1:
@@ -133,8 +156,14 @@ def run(impact: Impact, model: str = "mindlin", steps: int = DEFAULT_STEPS, *,
     """LAMMPS' rebound for ``impact`` with tangential ``model``; ``steps`` time steps per
     Hertz contact time. ``LammpsNotFound`` without ``lmp``, ``LammpsFailed`` on error."""
     exe = find_lmp(lmp)
-    text = deck(impact, model, steps)
-    values = deck_values(impact, model, steps)
+    e_in = None if impact.e >= 1.0 else lammps_tsuji_input(impact.e, steps, exe)
+    return _run(impact, model, steps, exe, e_in, timeout)
+
+
+def _run(impact: Impact, model: str, steps: int, exe: str, e_in: float | None,
+         timeout: float = 600.0) -> Rebound:
+    text = deck(impact, model, steps, e_in)
+    values = deck_values(impact, model, steps, e_in)
     with tempfile.TemporaryDirectory(prefix="dem_impact_") as tmp:
         (Path(tmp) / "impact_deck.in").write_text(text)
         start = time.perf_counter()
@@ -154,6 +183,32 @@ def run(impact: Impact, model: str = "mindlin", steps: int = DEFAULT_STEPS, *,
     last = table[-1]
     return _rebound(impact, last[3], last[4], last[5], last[6], last[7], last[8],
                     contact_time, seconds)
+
+
+@lru_cache(maxsize=32)
+def lammps_tsuji_input(e: float, steps: int = DEFAULT_STEPS, lmp: str | None = None) -> float:
+    """The input of LAMMPS' ``damping tsuji`` with which its normal impact rebounds with
+    e (to 1e-7), found by the secant method from ``tsuji_input(e)`` on LAMMPS' own normal
+    impact (Tsuji's e depends on nothing else; LAMMPS lets the dashpot pull at the end
+    of the contact, where the reference's force stops at zero, so the polynomial's
+    inverse alone misses e by 8e-5 at e = 0.98 and by 0.06 at e = 0.5)."""
+    from core.impact import Material
+    exe = find_lmp(lmp)
+    probe = Impact(radius=1e-3, material=Material("probe", 1e10, 0.3, 1000.0), mu=0.1,
+                   e=e, vz=-1.0)
+
+    def miss(x: float) -> float:
+        return _run(probe, "mindlin", steps, exe, x).normal_cor - e
+
+    x0 = tsuji_input(e)
+    x1 = min(x0 + 0.01, 1.0) if x0 < 0.99 else x0 - 0.01
+    f0, f1 = miss(x0), miss(x1)
+    for _ in range(12):
+        if abs(f1) < 1e-7 or f1 == f0:
+            break
+        x0, x1, f0 = x1, min(max(x1 - f1 * (x1 - x0) / (f1 - f0), 0.0), 0.999999), f1
+        f1 = miss(x1)
+    return float(x1)
 
 
 @dataclass(frozen=True)
@@ -260,4 +315,5 @@ def departure_range(incidence: ArrayLike, curve: ArrayLike, reference: ArrayLike
 
 __all__ = ["DEFAULT_STEPS", "MODELS", "QUANTITIES", "CurveScore", "Curves", "Rebound",
            "check_incidences", "deck", "deck_values", "departure_range", "exact",
-           "exact_curves", "lammps_curves", "run", "score_curve", "template"]
+           "exact_curves", "lammps_curves", "lammps_tsuji_input", "run", "score_curve",
+           "template", "tsuji_input"]
