@@ -51,7 +51,7 @@ def _paper(a: argparse.Namespace) -> dict:
             "dissipation": r.dissipation, "dissipation_closed": r.closed.dissipated_energy,
             "worst_stick_error": r.worst_stick_error,
             "elements_across": r.grid.elements_across, "steps": len(r.tau) - 1,
-            "seconds": r.seconds}
+            "seconds": r.seconds, "cpu_seconds": r.cpu_seconds}
 
 
 def _map(a: argparse.Namespace) -> dict:
