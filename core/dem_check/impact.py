@@ -45,7 +45,7 @@ from core.dem_check.lammps import MODELS, LammpsFailed, _check_model, find_lmp
 from core.impact import Impact, dashpot, solve, tsuji_coefficient
 
 FLAT_RADIUS = 1e4  # the held sphere standing for a flat, in sphere radii
-HERTZ_TIME = 2.943195  # elastic Hertz contact time in alpha* / v_n
+HERTZ_TIME = 2.9432751  # elastic Hertz contact time in alpha* / v_n
 DEFAULT_STEPS = 2000  # LAMMPS time steps per Hertz contact time
 QUANTITIES = ("tangential_cor", "rebound_spin", "rebound_angle", "contact_point_cor",
               "normal_cor", "contact_time")

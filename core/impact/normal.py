@@ -8,7 +8,7 @@ The exact problem is elastic (e = 1). Where a test prescribes a measured restitu
 k_n = (4/3) E* R*^(1/2) (Tsuji, Tanaka & Ishida 1992, Powder Technol. 71: 239-250; the
 form of LAMMPS' ``damping tsuji``). In the units of ``kernel`` it is gamma d^(1/4) d'
 with gamma = c (5/4)^(1/2), independent of the speed, so e depends on gamma alone;
-``dashpot(e)`` finds gamma by root finding on the normal impact itself (the same springs,
+``dashpot(e)`` finds gamma by the secant method on the normal impact itself (the same springs,
 integrator and tolerance as the full impact), so that the reference rebounds with e to
 the integrator's tolerance. The Coulomb bound of each spring stays on its elastic force:
 the dashpot adds no frictional capacity (a second model choice; it makes the tangential
@@ -48,8 +48,22 @@ def dashpot(e: float, springs: int, tol: float) -> float:
     """gamma such that the normal impact rebounds with restitution e (0 for e = 1)."""
     if e >= 1.0:
         return 0.0
-    return float(brentq(lambda g: restitution(g, springs, tol) - e, 0.0, 20.0,
-                        xtol=1e-14, rtol=1e-12))
+
+    def miss(g: float) -> float:
+        return restitution(g, springs, tol) - e
+
+    # secant from Tsuji's fit (close to the answer), brentq if it strays
+    g0 = tsuji_coefficient(e) * 1.25 ** 0.5
+    g1 = 1.02 * g0 + 1e-3
+    f0, f1 = miss(g0), miss(g1)
+    for _ in range(10):
+        if abs(f1) < 1e-11 or f1 == f0:
+            return float(g1)
+        g0, g1, f0 = g1, g1 - f1 * (g1 - g0) / (f1 - f0), f1
+        if not 0.0 < g1 < 20.0:
+            break
+        f1 = miss(g1)
+    return float(brentq(miss, 0.0, 20.0, xtol=1e-14, rtol=1e-12))
 
 
 __all__ = ["dashpot", "restitution", "tsuji_coefficient"]
