@@ -25,7 +25,7 @@ contact (no waves), Coulomb friction with one coefficient.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -59,7 +59,7 @@ class Normalised:
     psi2: float  # rebound of the contact point D'(end) / e (MBF's Psi2)
     slip_ratio: float  # D'(end) / psi1 = v_slip' / v_slip (nan for psi1 = 0)
     contact_time: float  # in alpha* / v_n (2.9432 for Hertz, e = 1)
-    slip_work: float  # frictional dissipation / (mu^2 E* alpha* a* delta* ...): see energy
+    slip_work: float  # frictional dissipation in mu E* alpha* a* delta* (kernel's units)
     steps: int
     rejected: int
     history: NDArray[np.float64] = field(repr=False)  # rows of kernel.HISTORY_COLUMNS
@@ -118,7 +118,7 @@ class ImpactResult:
     contact_time: float
     normal_impulse: float  # J_n on the sphere (N s)
     tangential_impulse: float  # J_t on the sphere (N s)
-    dissipated: float  # kinetic energy lost (J)
+    dissipated: float  # kinetic energy lost (J): slip work plus the dashpot's
     slip_work: float  # frictional dissipation of the history (J)
     psi1: float
     psi2: float
@@ -172,8 +172,8 @@ def solve(impact: Impact, springs: int = DEFAULT_SPRINGS, tol: float = DEFAULT_T
     slip_unit = i.mu * i.E_star * i.alpha_star / (4.0 * i.G_e)  # delta*
     vslip_unit = slip_unit / ts
     h = n.history
-    vn_after = -h[-1, 2] * vn  # separation speed
-    vslip_after = h[-1, 4] * vslip_unit
+    vn_after = float(-h[-1, 2]) * vn  # separation speed
+    vslip_after = float(h[-1, 4]) * vslip_unit
     J_n = i.m_n * (vn + vn_after)
     J_t = i.m_t * (vslip_after - i.slip_velocity)
     m2 = i.target.mass
@@ -197,18 +197,13 @@ def solve(impact: Impact, springs: int = DEFAULT_SPRINGS, tol: float = DEFAULT_T
         incidence_angle=math.degrees(i.incidence),
         contact_time=n.contact_time * ts,
         normal_impulse=J_n, tangential_impulse=J_t,
-        dissipated=0.0, slip_work=n.slip_work * i.mu * p0 * slip_unit,
+        dissipated=math.nan, slip_work=n.slip_work * i.mu * p0 * slip_unit,
         psi1=n.psi1, psi2=n.psi2, chi=n.chi,
         t=h[:, 0] * ts, P=h[:, 5] * force_unit, T=-h[:, 6] * i.mu * p0,
         approach=np.maximum(h[:, 1], 0.0) * i.alpha_star, slip=h[:, 3] * slip_unit,
         steps=n.steps)
     lost = res.kinetic_energy(after=False) - res.kinetic_energy(after=True)
-    return _replace(res, dissipated=lost)
-
-
-def _replace(res: ImpactResult, **kw: float) -> ImpactResult:
-    from dataclasses import replace
-    return replace(res, **kw)
+    return replace(res, dissipated=lost)
 
 
 __all__ = ["DEFAULT_SPRINGS", "DEFAULT_TOL", "ImpactResult", "Normalised", "check_numerics",
