@@ -12,8 +12,9 @@ Kalker's shift transient). When beta != 0 the normal and tangential problems are
 between them (Panagiotopoulos' process) until p and q change by less than ``outer_tol``;
 for beta = 0 one pass is exact.
 
-The friction work of a step is -sum(q . s) h^2 >= 0 (Coulomb's law makes every term
-non-negative).
+The friction work of a step is -sum(q_mean . s) h^2, q_mean the mean of the step's two
+tractions (trapezoid rule for int q . ds; with the end traction alone every term would be
+non-negative by Coulomb's law, but the estimate is only first order in the step).
 """
 
 from __future__ import annotations
@@ -121,7 +122,9 @@ def step(op: Operators, h0: Array, state: State, mu: float, dW: tuple[float, flo
         if not op.coupled or (change <= settings.outer_tol and loose <= settings.outer_tol):
             break
     area = op.grid.area
-    work = -float(np.sum(qx * ts.sx + qy * ts.sy)) * area
+    # trapezoid rule in the step for int q . ds (the traction moves from the previous
+    # step's to this one's while the slip s accumulates)
+    work = -0.5 * float(np.sum((qx + state.qx) * ts.sx + (qy + state.qy) * ts.sy)) * area
     return State(p, qx, qy, ts.sx + state.ux + dW[0], ts.sy + state.uy + dW[1], ts.sx,
                  ts.sy, ns.approach if load is not None else float(approach),
                  state.work + work,
