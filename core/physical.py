@@ -3,9 +3,9 @@ that turn every dimensionless result back into newtons, metres, pascals, joules 
 
 Two dissimilar bodies (docs/physics.md, section 11.1) enter through Goodman's
 approximation, which neglects the coupling of the normal and tangential problems (measured
-by Dundurs' beta, ``dundurs_beta``). Under it every formula of the paper holds with the
-contact's effective constants, and those are exactly the constants of one pair of identical
-spheres, the *equivalent pair* (``equivalent_pair``):
+by Dundurs' beta, ``dundurs_beta``). Under it every formula of the paper's eqs 5-41 holds
+with the contact's effective constants, and those are exactly the constants of one pair of
+identical spheres, the *equivalent pair* (``equivalent_pair``):
 
     G_eq = 2 G1 G2 / (G1 + G2)              (harmonic mean of the shear moduli)
     nu_eq = (nu1 G2 + nu2 G1) / (G1 + G2)   (the Poisson ratios weighted by compliance)
@@ -14,6 +14,10 @@ spheres, the *equivalent pair* (``equivalent_pair``):
 for which G_eq / (1 - nu_eq) = E* (1/E* = (1 - nu1)/(2 G1) + (1 - nu2)/(2 G2)),
 G_eq / (2 (2 - nu_eq)) = G* (1/G* = (2 - nu1)/G1 + (2 - nu2)/G2) and R_eq / 2 is the
 effective radius. Identical bodies are their own equivalent pair, bit for bit.
+
+The pair's centre motion (eqs 42, 43) is half the relative tangential displacement of
+the two surfaces; each body takes its own share of it, in proportion to its tangential
+compliance (2 - nu) / G (``upper_share``; docs/physics.md, section 11.1).
 """
 
 from __future__ import annotations
