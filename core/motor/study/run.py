@@ -1,0 +1,184 @@
+"""Run a design study on Dask distributed: the same code from a laptop to a cluster.
+
+``run_study`` creates (or reopens) the study's store, and sends every unfinished chunk
+as one task (``chunks.evaluate_chunk``: a block of ``StudySpec.block`` designs) to a
+Dask cluster: an embedded ``LocalCluster`` of worker processes on this machine by
+default, or an existing scheduler (``scheduler="tcp://HOST:8786"``, or the environment's
+``DASK_SCHEDULER_ADDRESS``). Results come back to this process, which alone writes the
+store, chunk by chunk, each chunk marked once its data are written (``store``).
+
+Bounds: at most ``in_flight`` tasks (default: twice the cluster's threads) are
+submitted or held at once, so neither the scheduler's queue nor this process's memory
+grows with the study; a LocalCluster's workers each get ``memory_limit``. A worker lost
+mid-study loses its running task, which the scheduler runs again elsewhere: every chunk
+is written exactly once per run, with the bytes of any other run. Ctrl-C (or any
+exception, e.g. from ``on_chunk``) cancels the tasks in flight and leaves the store
+with its finished chunks: running the study again resumes it.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from core.motor.study import store
+from core.motor.study.chunks import chunk_ids, chunk_name, evaluate_chunk
+from core.motor.study.spec import StudySpec
+
+#: Memory per LocalCluster worker process.
+MEMORY_LIMIT = "2GiB"
+
+
+@dataclass(frozen=True)
+class StudyRun:
+    """What one run did: the store, the chunks computed by this run and those already
+    finished before it, the total, the designs per second of this run and its wall
+    time (s)."""
+
+    path: Path
+    computed: int
+    reused: int
+    chunks: int
+    designs: int
+    seconds: float
+
+    @property
+    def complete(self) -> bool:
+        return self.computed + self.reused == self.chunks
+
+
+def scheduler_address(scheduler: str | None = None) -> str | None:
+    """The scheduler to use: the argument, else DASK_SCHEDULER_ADDRESS, else None (an
+    embedded LocalCluster)."""
+    return scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS") or None
+
+
+def _client(scheduler: str | None, workers: int | None, memory_limit: str):
+    """(client, cluster or None): a Client of the scheduler, or of a new LocalCluster
+    of ``workers`` single-threaded processes (default: one per CPU)."""
+    from distributed import Client, LocalCluster
+
+    address = scheduler_address(scheduler)
+    if address:
+        return Client(address, timeout="30s"), None
+    n = workers or os.cpu_count() or 1
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                           memory_limit=memory_limit, dashboard_address=None)
+    return Client(cluster), cluster
+
+
+def run_study(spec: StudySpec, folder: str | Path, *, scheduler: str | None = None,
+              workers: int | None = None, client: object | None = None,
+              in_flight: int | None = None, memory_limit: str = MEMORY_LIMIT,
+              progress: bool = False,
+              on_chunk: Callable[[tuple[int, ...], int], None] | None = None) -> StudyRun:
+    """Compute every unfinished chunk of ``spec`` into its store in ``folder``.
+
+    Parameters
+    ----------
+    spec : StudySpec
+        The study.
+    folder : str or Path
+        Where its store is (``spec.store_path(folder)``; made if missing).
+    scheduler : str, optional
+        An existing Dask scheduler's address (tcp://HOST:8786); default
+        DASK_SCHEDULER_ADDRESS, else an embedded LocalCluster.
+    workers : int, optional
+        Worker processes of the LocalCluster (default: one per CPU).
+    client : distributed.Client, optional
+        A client to use as it is (neither made nor closed here).
+    in_flight : int, optional
+        Most tasks submitted at once (default: twice the cluster's threads).
+    memory_limit : str
+        Memory of each LocalCluster worker.
+    progress : bool
+        Show a progress bar (tqdm) of the designs.
+    on_chunk : callable, optional
+        Called as on_chunk(chunk, finished_count) after each chunk is written.
+
+    Returns
+    -------
+    StudyRun
+    """
+    from distributed import as_completed
+
+    path = spec.store_path(folder)
+    store.create(spec, path)
+    done = store.finished(path)
+    todo = [c for c in chunk_ids(spec) if chunk_name(c) not in done]
+    total = sum(1 for _ in chunk_ids(spec))
+    start = time.perf_counter()
+    if not todo:
+        return StudyRun(path, 0, len(done), total, 0, 0.0)
+    own = client is None
+    cluster = None
+    if own:
+        client, cluster = _client(scheduler, workers, memory_limit)
+    bar = None
+    computed = designs = 0
+    pending: dict[object, tuple[int, ...]] = {}
+    try:
+        if progress:
+            from tqdm import tqdm
+
+            bar = tqdm(total=spec.size, initial=spec.size - _designs(spec, todo),
+                       unit="design", desc=spec.name, smoothing=0.1)
+        limit = in_flight or 2 * max(sum(client.nthreads().values()), 1)
+        writer = store.Writer(spec, path)
+        queue = iter(todo)
+        flow = as_completed()
+        for chunk in queue:
+            fut = client.submit(evaluate_chunk, spec, chunk, key=_key(spec, chunk),
+                                pure=False, retries=2)
+            pending[fut] = chunk
+            flow.add(fut)
+            if len(pending) >= limit:
+                break
+        for fut in flow:
+            chunk = pending.pop(fut)
+            values = fut.result()
+            fut.release()
+            writer.write(chunk, values)
+            computed += 1
+            n = values["psi"].size
+            designs += n
+            if bar is not None:
+                bar.update(n)
+            if on_chunk is not None:
+                on_chunk(chunk, len(done) + computed)
+            nxt = next(queue, None)
+            if nxt is not None:
+                fut = client.submit(evaluate_chunk, spec, nxt, key=_key(spec, nxt),
+                                    pure=False, retries=2)
+                pending[fut] = nxt
+                flow.add(fut)
+    finally:
+        for fut in list(pending):
+            fut.cancel()
+        if bar is not None:
+            bar.close()
+        if own:
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    return StudyRun(path, computed, len(done), total, designs, time.perf_counter() - start)
+
+
+def _designs(spec: StudySpec, chunks: list[tuple[int, ...]]) -> int:
+    from core.motor.study.chunks import chunk_slices
+
+    count = 0
+    for c in chunks:
+        n = 1
+        for s in chunk_slices(spec, c):
+            n *= s.stop - s.start
+        count += n
+    return count
+
+
+def _key(spec: StudySpec, chunk: tuple[int, ...]) -> str:
+    """The task's key: the study's key and the chunk (unique per run, see pure=False)."""
+    return f"study-{spec.key}-{chunk_name(chunk)}-{time.monotonic_ns()}"
