@@ -23,6 +23,7 @@ import app.methods.data as data
 from app.kit.batch import held
 from app.kit.figures import CURVE_POINTS, fit_range, new_figure, style_figure
 from app.kit.jobs import RUNNER
+from app.kit.progress import JobProgress
 from app.kit.widgets import LabelledCheckbox, text_html
 from app.methods.results import RESULTS, download_text, read_rows
 from app.methods.speed_chart import STYLE, SpeedAccuracyData, speed_accuracy_chart
@@ -102,7 +103,7 @@ class MethodsScene:
         self.resolution = pn.widgets.Select(
             label="Resolution", options=data.RESOLUTION_FACTORS, value=1.0, width=200)
         self.run_button = pn.widgets.Button(label="Run methods", color="primary", width=140)
-        self.progress = pn.indicators.Progress(active=False, visible=False, width=200)
+        self.progress = JobProgress(width=200)
         self.status = pn.pane.HTML("", sizing_mode="stretch_width", name="methods_status")
         self.table = pn.pane.Markdown("", sizing_mode="stretch_width")
         self.run_button.on_click(lambda _: self.run())
@@ -170,7 +171,7 @@ class MethodsScene:
             return
         self._requests += 1
         names = list(self.choice.value)
-        self.progress.param.update(active=True, visible=True)
+        self.progress.busy = True
         self.status.object = text_html(f"computing {', '.join(names) or 'nothing'}…")
         resolutions = {name: data.resolution(name, self.resolution.value) for name in names}
         RUNNER.submit(self, partial(data.solve_all, self._contact, resolutions),
@@ -182,7 +183,7 @@ class MethodsScene:
         if request != self._requests:
             return  # a newer run is on its way
         with held():
-            self.progress.param.update(active=False, visible=False)
+            self.progress.busy = False
             if isinstance(outcome, Exception):
                 self.status.object = text_html(f"⚠ the methods could not run: {outcome}")
                 return

@@ -33,6 +33,7 @@ from app.contact import export
 from app.kit.batch import held
 from app.kit.figures import fit_range
 from app.kit.jobs import RUNNER
+from app.kit.progress import JobProgress
 from app.kit.widgets import ERROR_STYLE, ExactSlider, LabelledCheckbox, show_later, text_html
 from app.kit.wire import inline
 from app.motor.fields import (
@@ -108,7 +109,7 @@ class MotorScene(pn.viewable.Viewer):
         self.rotor_select.param.watch(lambda e: self.apply_preset("rotor", e.new), "value")
         self.material_select.param.watch(lambda e: self.choose(rod_material=e.new), "value")
         self.flat_box.param.watch(lambda e: self.choose(flat=e.new), "value")
-        self.progress = pn.indicators.Progress(active=False, visible=False, width=180)
+        self.progress = JobProgress(width=180)
 
         def pane(name: str, **kw: Any) -> pn.pane.HTML:
             return pn.pane.HTML("", sizing_mode="stretch_width", name=name, **kw)
@@ -275,7 +276,7 @@ class MotorScene(pn.viewable.Viewer):
         limit = m.mu * m.preload * 1e3
         fit_range(f.thrust_figure.y_range, [-limit, limit], pad=0.08)
         end = L * 1e3 * (1.0 - 1e-3)  # the x0 slider spans the rod, ends excluded
-        self.inputs["x0"].param.update(start=-end, end=end)
+        self.inputs["x0"].set_range(-end, end, self.state.x0)
         warning = m.beta_warning
         self.beta.object = text_html(
             f"Dundurs' β = {m.beta:.3g} (0 for the paper's identical bodies)"
@@ -317,7 +318,7 @@ class MotorScene(pn.viewable.Viewer):
         si = {k: FIELDS[k].si(getattr(s, k)) for k in (*WEAR_FIELDS, *LOAD_FIELDS)}
         job = partial(data.compute, data.Request(
             self.motor, self.x0, si["load"], si["mass"], si["k"], si["hardness"]))
-        self.progress.param.update(active=True, visible=True)
+        self.progress.busy = True
         self.status.object = "computing the thrust-speed curve, the load and the wear…"
         RUNNER.submit(self, job, partial(self._done, self._requests))
 
@@ -325,7 +326,7 @@ class MotorScene(pn.viewable.Viewer):
         if request != self._requests:
             return  # a newer request is on its way
         with held():
-            self.progress.param.update(active=False, visible=False)
+            self.progress.busy = False
             if isinstance(outcome, Exception):
                 self.status.object = text_html(f"⚠ could not compute: {outcome}")
                 return

@@ -53,7 +53,7 @@ def test_methods_overlay_holds_what_numerics_computes(ex: Explorer) -> None:
     err = np.max(np.abs(res.T - c.tangential_force(res.tau)))
     assert f"| mdr | {res.resolution} | {err:.2e} |" in ex.methods.table.object
     eq(ex.methods.exact.data["T"], c.tangential_force(c.tau_grid(CURVE_POINTS)))
-    assert not ex.methods.progress.visible and ex.methods.status.object == ""
+    assert not ex.methods.progress.busy and ex.methods.status.object == ""
 
 
 def test_methods_run_at_the_resolution_chosen(ex: Explorer) -> None:
@@ -133,7 +133,7 @@ def test_a_newer_run_replaces_the_waiting_one_and_only_it_is_shown() -> None:
     try:
         s.choice.value = ["mdr"]
         s.choice.value = ["annulus"]  # replaces the waiting run
-        assert RUNNER.waiting() == 1 and s.progress.visible
+        assert RUNNER.waiting() == 1 and s.progress.busy
         assert "computing annulus" in s.status.object
     finally:
         gate.set()
@@ -142,7 +142,7 @@ def test_a_newer_run_replaces_the_waiting_one_and_only_it_is_shown() -> None:
     c = s._contact
     n = numerics.INTERACTIVE_RESOLUTION["annulus"]
     eq(s.source.data["ys"][0], numerics.solve("annulus", c, n).T)
-    assert not s.progress.visible and s.status.object == ""
+    assert not s.progress.busy and s.status.object == ""
 
 
 def test_a_closed_card_drops_its_waiting_run_and_asks_for_nothing_more() -> None:
@@ -174,7 +174,7 @@ def test_a_failed_run_ends_the_progress_and_says_why(monkeypatch: pytest.MonkeyP
     monkeypatch.setattr(app.methods.data, "solve_all", broken)
     s.run()
     assert RUNNER.idle(60)
-    assert not s.progress.visible
+    assert not s.progress.busy
     assert s.status.object == "⚠ the methods could not run: out of memory"
 
 

@@ -19,7 +19,7 @@ def test_a_closed_scene_drops_its_waiting_job_and_asks_for_nothing_more() -> Non
     gate = blocked(RUNNER)
     try:
         s.inputs["x0"].value = -2.0
-        assert RUNNER.waiting() == 1 and s.progress.visible
+        assert RUNNER.waiting() == 1 and s.progress.busy
         s.close()
         assert RUNNER.waiting() == 0  # dropped
         s.inputs["x0"].value = -3.0  # a closed scene asks for nothing more
@@ -37,13 +37,13 @@ def test_a_newer_request_replaces_the_waiting_one_and_only_it_is_shown() -> None
     try:
         s.inputs["x0"].value = -2.0
         s.inputs["x0"].value = -4.0  # replaces the waiting request
-        assert RUNNER.waiting() == 1 and s.progress.visible
+        assert RUNNER.waiting() == 1 and s.progress.busy
         assert s.status.object == "computing the thrust-speed curve, the load and the wear…"
     finally:
         gate.set()
     assert_curve_matches_core(s)
     assert s.results.at_x0.point.x0 == -0.004
-    assert not s.progress.visible
+    assert not s.progress.busy
     s.close()
 
 
@@ -57,7 +57,7 @@ def test_a_failed_job_ends_the_progress_and_says_why(scene: MotorScene,
     monkeypatch.setattr(app.motor.data, "compute", broken)
     scene.inputs["x0"].value = -3.0
     wait()
-    assert not scene.progress.visible
+    assert not scene.progress.busy
     assert scene.status.object == "⚠ could not compute: out of memory"
 
 

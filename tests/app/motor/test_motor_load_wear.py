@@ -104,7 +104,7 @@ def test_a_load_above_the_stall_thrust_is_refused_in_plain_words(scene: MotorSce
         "rotor cannot move; lower the load or move the rotor.")
     assert scene.figures.operating.data["V_mm_s"] == []
     assert scene.figures.start.data["t_ms"] == []
-    assert scene.state.load == 0.05 and not scene.progress.visible
+    assert scene.state.load == 0.05 and not scene.progress.busy
     assert len(scene.figures.speed.data["v"]) > 60  # the curve stays
     scene.inputs["load"]._entry.value = "0.01"  # a load it can carry: shown again
     wait()

@@ -127,7 +127,7 @@ def test_default_scene_is_core(scene: MotorScene) -> None:
     assert_x0_matches_core(scene)
     assert_curve_matches_core(scene)
     assert len(scene.figures.invalid.data["left"]) == 2  # both ends never open
-    assert not scene.progress.visible
+    assert not scene.progress.busy
 
 
 def test_x0_move_updates_the_contact_and_the_curve(scene: MotorScene) -> None:
@@ -165,7 +165,7 @@ def test_never_opening_x0_has_no_curve_and_says_why(scene: MotorScene) -> None:
     assert scene.status.object == (
         f"The contact never opens at x₀ = 19 mm (Φ = {phi:.3g} ≥ 8): the model does not "
         "apply there, and there is no thrust.")
-    assert not scene.progress.visible
+    assert not scene.progress.busy
     text = scene.csv_text("speed")  # the header block and the column names, no rows
     assert "# no curve: the contact never opens at x0\n" in text
     table = pd.read_csv(io.StringIO(text), comment="#")
@@ -180,7 +180,7 @@ def test_no_curve_at_the_centre_says_why_in_plain_words(scene: MotorScene) -> No
     assert scene.status.object == (
         "At x₀ = 0 mm the rod barely moves along x (ψ = 0): at its centre it does not at "
         "all, and drives nothing: move the rotor off the centre.")
-    assert not scene.progress.visible
+    assert not scene.progress.busy
     text = scene.csv_text("speed")
     assert "# no curve: no tangential drive at x0\n" in text
     assert "# x0 (m) = 0.0\n" in text
