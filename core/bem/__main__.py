@@ -58,7 +58,8 @@ def _map(a: argparse.Namespace) -> dict:
     from core.bem.error_map import beta_threshold, error_map, write_csv
 
     t0 = time.perf_counter()
-    rows = error_map(grids=tuple(a.grids), steps=a.steps, psi=a.psi, tau0=a.tau0, mu=a.mu)
+    rows = error_map(grids=tuple(a.grids), steps=a.steps, psi=a.psi, tau0=a.tau0, mu=a.mu,
+                     progress=sys.stderr)
     if a.csv:
         write_csv(rows, a.csv)
     threshold = beta_threshold(rows)

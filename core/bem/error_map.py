@@ -7,6 +7,13 @@ materials (body 1, the held one, first in the table's order; beta and nu_eq from
 
 Every row is run on two grids; the difference between them is the row's grid-convergence
 estimate (the error of the coarser figure, an upper estimate for the finer one).
+
+Two measures of the closed form's error: against the referee directly (``worst_T_error``
+and the like: the model's error plus the referee's discretisation error), and against the
+referee's own run at nu = 0, beta = 0 on the same grid and time steps (``*_model``), where
+the closed form is exact: T / T0, the impulse ratio and D / (T0 u0) of the closed form do
+not depend on nu for given psi and tau0, so the referee's change from that run is the
+model's error with most of the discretisation error cancelled.
 """
 
 from __future__ import annotations
@@ -16,9 +23,12 @@ import itertools
 import math
 from dataclasses import asdict, dataclass
 from pathlib import Path
+from typing import TextIO
+
+import numpy as np
 
 from core.bem.pair import Pair
-from core.bem.paper import run_paper
+from core.bem.paper import PaperRun, run_paper
 from core.materials import PRESETS
 
 #: Poisson ratios of the identical-body rows, and the beta sweep (at SWEEP_NU).
@@ -32,7 +42,9 @@ class MapRow:
     """One material pair: its label, nu (effective), beta, and for the fine grid the worst
     |T - T_closed| / T0, the impulse ratio's error (referee minus eq 41), the dissipation
     ratio (referee over closed form; nan for psi <= 1), the worst stick-radius error
-    (units a*), each with ``*_grid`` = |fine - coarse|; the two grids and the seconds."""
+    (units a*), and against the referee at nu = 0, beta = 0 (module docstring) the worst
+    |T - T_ref| / T0, the impulse ratio's change and the dissipation's ratio, each with
+    ``*_grid`` = |fine - coarse|; the two grids and the seconds."""
 
     label: str
     nu: float
@@ -45,6 +57,12 @@ class MapRow:
     dissipation_ratio_grid: float
     stick_error: float
     stick_error_grid: float
+    worst_T_model: float
+    worst_T_model_grid: float
+    impulse_model: float
+    impulse_model_grid: float
+    dissipation_model: float
+    dissipation_model_grid: float
     coarse: int
     fine: int
     seconds: float
@@ -68,29 +86,44 @@ def cases() -> list[tuple[str, Pair]]:
 
 def map_row(label: str, pair: Pair, *, grids: tuple[int, int] = (32, 64), steps: int = 200,
             psi: float = 2.414213562373095, tau0: float = math.pi / 6,
-            mu: float = 0.2) -> MapRow:
-    """The row of one pair: the paper's loading on two grids (``core.bem.paper``)."""
+            mu: float = 0.2, reference: tuple[PaperRun, PaperRun] | None = None) -> MapRow:
+    """The row of one pair: the paper's loading on two grids (``core.bem.paper``);
+    ``reference``: the runs at nu = 0, beta = 0 on the same grids (run if None)."""
     runs = [run_paper(psi, tau0, pair.nu, beta=pair.beta, mu=mu, grid=n, steps=steps)
             for n in grids]
-    c, f = runs
+    refs = reference or tuple(run_paper(psi, tau0, 0.0, mu=mu, grid=n, steps=steps)
+                              for n in grids)
 
     def both(get):  # the fine figure and its grid estimate
-        return get(f), abs(get(f) - get(c))
+        fine, coarse = get(runs[1], refs[1]), get(runs[0], refs[0])
+        return fine, abs(fine - coarse)
 
-    t, tg = both(lambda r: r.worst_T_error)
-    i, ig = both(lambda r: r.impulse_ratio - r.impulse_ratio_closed)
-    d, dg = both(lambda r: r.dissipation_ratio)
-    s, sg = both(lambda r: r.worst_stick_error)
-    return MapRow(label, pair.nu, pair.beta, t, tg, i, ig, d, dg, s, sg, grids[0], grids[1],
-                  c.seconds + f.seconds)
+    t, tg = both(lambda r, _: r.worst_T_error)
+    i, ig = both(lambda r, _: r.impulse_ratio - r.impulse_ratio_closed)
+    d, dg = both(lambda r, _: r.dissipation_ratio)
+    s, sg = both(lambda r, _: r.worst_stick_error)
+    tm, tmg = both(lambda r, q: float(np.abs(r.T - q.T).max()))
+    im, img = both(lambda r, q: r.impulse_ratio - q.impulse_ratio)
+    dm, dmg = both(lambda r, q: r.dissipation / q.dissipation if q.dissipation > 0
+                   else math.nan)
+    return MapRow(label, pair.nu, pair.beta, t, tg, i, ig, d, dg, s, sg, tm, tmg, im, img,
+                  dm, dmg, grids[0], grids[1], sum(r.seconds for r in runs))
 
 
 def error_map(*, grids: tuple[int, int] = (32, 64), steps: int = 200,
               psi: float = 2.414213562373095, tau0: float = math.pi / 6,
-              mu: float = 0.2) -> list[MapRow]:
-    """Every row of ``cases``."""
-    return [map_row(label, pair, grids=grids, steps=steps, psi=psi, tau0=tau0, mu=mu)
-            for label, pair in cases()]
+              mu: float = 0.2, progress: TextIO | None = None) -> list[MapRow]:
+    """Every row of ``cases`` (each row's label written to ``progress`` when done)."""
+    rows = []
+    refs = tuple(run_paper(psi, tau0, 0.0, mu=mu, grid=n, steps=steps) for n in grids)
+    for label, pair in cases():
+        rows.append(map_row(label, pair, grids=grids, steps=steps, psi=psi, tau0=tau0,
+                            mu=mu, reference=refs))
+        if progress is not None:
+            print(f"{label}: worst T error {rows[-1].worst_T_error:.3g} T0, model "
+                  f"{rows[-1].worst_T_model:.3g} T0 "
+                  f"({rows[-1].seconds:.0f} s)", file=progress, flush=True)
+    return rows
 
 
 def write_csv(rows: list[MapRow], path: str | Path) -> None:
@@ -103,11 +136,12 @@ def write_csv(rows: list[MapRow], path: str | Path) -> None:
 
 
 def beta_threshold(rows: list[MapRow], level: float = 0.01) -> float:
-    """The |beta| at which the sweep's worst T error first reaches ``level`` (units T0),
+    """The |beta| at which the sweep's worst T error against the referee at nu = 0,
+    beta = 0 (``worst_T_model``) first reaches ``level`` (units T0),
     by linear interpolation in |beta| between the sweep's rows; inf when it never does
     within the sweep."""
-    sweep = sorted((abs(r.beta), r.worst_T_error) for r in rows if r.label.startswith("sweep"))
-    base = next((r.worst_T_error for r in rows if r.label == f"identical nu={SWEEP_NU:g}"),
+    sweep = sorted((abs(r.beta), r.worst_T_model) for r in rows if r.label.startswith("sweep"))
+    base = next((r.worst_T_model for r in rows if r.label == f"identical nu={SWEEP_NU:g}"),
                 0.0)
     sweep = [(0.0, base), *sweep]
     for (b0, e0), (b1, e1) in itertools.pairwise(sweep):
