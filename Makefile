@@ -75,6 +75,14 @@ bench-charts: venv
 docker-smoke:
 	bash docker/smoke.sh
 
+# Design studies on a real Dask deployment: a `dask scheduler` and two `dask worker`
+# processes on loopback (a free port), the example study through --scheduler, its store
+# compared bit for bit with a LocalCluster's; the processes are stopped also on failure
+# (core/motor/study/smoke.py, docs/study.md).
+.PHONY: study-smoke
+study-smoke: venv
+	$(PY) -m core.motor.study.smoke
+
 # Re-pin the stack after a change of pyproject's requirements: a fresh environment
 # with the newest versions pyproject allows, frozen into constraints.txt.
 lock:

@@ -26,7 +26,7 @@ from pathlib import Path
 
 from core.motor.study import store
 from core.motor.study.chunks import chunk_ids, chunk_name, evaluate_chunk
-from core.motor.study.spec import StudySpec
+from core.motor.study.spec import StudySpec, code_version
 
 #: Memory per LocalCluster worker process.
 MEMORY_LIMIT = "2GiB"
@@ -56,6 +56,15 @@ def scheduler_address(scheduler: str | None = None) -> str | None:
     return scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS") or None
 
 
+def local_cluster_options(workers: int, memory_limit: str = MEMORY_LIMIT) -> dict:
+    """LocalCluster's arguments: ``workers`` single-threaded processes of
+    ``memory_limit`` each, scheduler and workers on loopback, no dashboard (its HTTP
+    server, which the scheduler always starts, on a free loopback port)."""
+    return {"n_workers": workers, "threads_per_worker": 1, "processes": True,
+            "memory_limit": memory_limit, "host": "127.0.0.1",
+            "dashboard_address": "127.0.0.1:0", "scheduler_kwargs": {"dashboard": False}}
+
+
 def _client(scheduler: str | None, workers: int | None, memory_limit: str):
     """(client, cluster or None): a Client of the scheduler, or of a new LocalCluster
     of ``workers`` single-threaded processes (default: one per CPU)."""
@@ -65,8 +74,7 @@ def _client(scheduler: str | None, workers: int | None, memory_limit: str):
     if address:
         return Client(address, timeout="30s"), None
     n = workers or os.cpu_count() or 1
-    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                           memory_limit=memory_limit, dashboard_address=None)
+    cluster = LocalCluster(**local_cluster_options(n, memory_limit))
     return Client(cluster), cluster
 
 
@@ -126,6 +134,7 @@ def run_study(spec: StudySpec, folder: str | Path, *, scheduler: str | None = No
 
             bar = tqdm(total=spec.size, initial=spec.size - _designs(spec, todo),
                        unit="design", desc=spec.name, smoothing=0.1)
+        check_workers(client)
         limit = in_flight or 2 * max(sum(client.nthreads().values()), 1)
         writer = store.Writer(spec, path)
         queue = iter(todo)
@@ -165,6 +174,18 @@ def run_study(spec: StudySpec, folder: str | Path, *, scheduler: str | None = No
             if cluster is not None:
                 cluster.close()
     return StudyRun(path, computed, len(done), total, designs, time.perf_counter() - start)
+
+
+def check_workers(client) -> None:
+    """ValueError unless every worker runs this process's code (``code_version``): a
+    store's key names the code that computed it."""
+    mine = code_version()
+    theirs = client.run(code_version)
+    other = sorted(w for w, v in theirs.items() if v != mine)
+    if other:
+        raise ValueError(f"the workers {', '.join(other)} run other code than this client "
+                         f"(code version {theirs[other[0]]}, here {mine}): run the study "
+                         "from the workers' installation (e.g. their image)")
 
 
 def _designs(spec: StudySpec, chunks: list[tuple[int, ...]]) -> int:

@@ -25,6 +25,7 @@ from core.motor.study import (
 )
 from core.motor.study.__main__ import main
 from core.motor.study.chunks import VARIABLES, chunk_ids, chunk_slices, evaluate_chunk
+from core.motor.study.run import local_cluster_options
 
 distributed = pytest.importorskip("distributed")
 pytestmark = pytest.mark.slow  # a real cluster: ~30 s for the module on two cores
@@ -37,8 +38,7 @@ SPEC = StudySpec("t", (Axis.grid("x0", -0.012, -0.0005, 6),
 
 @pytest.fixture(scope="module")
 def client():
-    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                       dashboard_address=None, memory_limit="1GiB")
+    cluster = distributed.LocalCluster(**local_cluster_options(2, "1GiB"))
     c = distributed.Client(cluster)
     try:
         yield c
