@@ -186,8 +186,6 @@ class LiveText(WrittenHTML):
 
     text = param.String(default="", allow_refs=False)
 
-    MIRRORED: ClassVar[bool] = False  # (the server's text alone)
-
     _template = '<div id="region" role="status" aria-live="polite" aria-atomic="true"></div>'
     _scripts: ClassVar[dict[str, str]] = dict.fromkeys(
         ("render", "text"), "region.textContent = data.text;")  # (text, never markup)

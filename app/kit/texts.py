@@ -14,8 +14,7 @@ Even a `ReactiveHTML`'s change costs Panel about 0.8 ms of server CPU (it recomp
 component's design, its stylesheets among them, on every change of any property).
 `WrittenHTML.write` writes the changed parameters straight into the component's Bokeh
 data model in the current document (0.05 ms): the same message, the same property,
-without Panel's recomputation; a text only the server writes lives there alone once
-rendered (`WrittenHTML.MIRRORED`).
+without Panel's recomputation, and the parameter holds what the page shows.
 """
 
 from __future__ import annotations
@@ -56,6 +55,12 @@ def write_model(model: Model, properties: dict[str, Any]) -> None:
 class WrittenHTML(ReactiveHTML):
     """A `ReactiveHTML` whose parameters are written into its Bokeh data model (`write`).
 
+    The one way the app sets a text (or a slider's value) that changes on every move:
+    `write(**values)` sets the parameters, so that each always holds what the page shows,
+    and writes those that changed into the component's data model in the current
+    document without Panel's watchers (`write_past_panel`): the same message, the same
+    property, without Panel's recomputation of the component (~0.8 ms a change).
+
     The data model carries the component's `name`, by which `write` finds it in the
     document (Bokeh indexes the models by name): give each a name of its own in its
     page.  A parameter that the component's scripts set from the browser
@@ -63,20 +68,8 @@ class WrittenHTML(ReactiveHTML):
     `panel.io.hold` Panel sends the write without running that watcher; elsewhere the
     watcher runs and finds the parameter equal already.  The parameters written on every
     move are declared `allow_refs=False`: they take values, and Panel would otherwise
-    look for a reference in each value set (~5 µs a set).
-
-    `MIRRORED`: whether `write` keeps the parameters equal to what it writes.  A
-    component whose values the browser sends back (a slider) must: Panel compares what
-    arrives with the parameter.  One whose text only the server writes (a description,
-    a table, a live region, the URL) is written into its data model alone once it is
-    rendered in the current document: the page is then its truth (`shown`), and its
-    parameters keep the values it was rendered with.  Setting a parameter past Panel's
-    watchers (`write_past_panel`) is about half of a write's server CPU, and a psi move
-    writes half a dozen texts.
+    look for a reference in each value set.
     """
-
-    #: whether `write` sets the parameters too where the component is rendered
-    MIRRORED: ClassVar[bool] = True
 
     def data_model(self, doc: Document | None) -> Model | None:
         """This component's data model in `doc`; None where it is not rendered (or its
@@ -89,30 +82,20 @@ class WrittenHTML(ReactiveHTML):
             return None
 
     def write(self, **values: Any) -> None:
-        """Set the parameters to `values`; those that change are written into the
+        """Set the parameters to `values`; those that change are also written into the
         component's data model in the current document (`panel.state.curdoc`), outside
         Panel's update of the component, as they are (Panel would pass a text through
         its HTML sanitizer first, which writes '&' as '&amp;': the scripts set texts as
-        text), and (`MIRRORED`) set on the component.  Where it is not rendered (no
-        document, or another one) the parameters are set as usual (Panel updates what it
-        rendered)."""
-        model = self.data_model(pn.state.curdoc)
-        held_by = self if model is None or self.MIRRORED else model
-        changed = {k: v for k, v in values.items() if getattr(held_by, k) != v}
+        text).  Where it is not rendered (no document, or another one) the parameters
+        are set as usual (Panel updates what it rendered)."""
+        changed = {k: v for k, v in values.items() if getattr(self, k) != v}
         if not changed:
             return
+        model = self.data_model(pn.state.curdoc)
         if model is None:
             self.param.update(**changed)
-        elif self.MIRRORED:
-            write_past_panel(self, changed, model, changed)
         else:
-            write_model(model, changed)
-
-    def shown(self, name: str) -> Any:
-        """The value of parameter `name` on the page: its data model's where the component
-        is rendered in the current document, else the parameter's."""
-        model = self.data_model(pn.state.curdoc)
-        return getattr(self if model is None else model, name)
+            write_past_panel(self, changed, model, changed)
 
 
 class PaneText:
@@ -174,8 +157,6 @@ class Description(WrittenHTML):
     label = param.String(default="", allow_refs=False)
     description = param.String(default="", allow_refs=False)
 
-    MIRRORED: ClassVar[bool] = False  # (the server's text alone)
-
     _template = '<div id="fig" role="figure"><p id="desc"></p></div>'
     _scripts: ClassVar[dict[str, str]] = dict.fromkeys(
         ("render", "label", "description"), _DESCRIBE)
@@ -210,7 +191,7 @@ for (const [quantity, value] of JSON.parse(data.cells)) {
 class TextTable(WrittenHTML):
     """A table (class `readout`) named by `caption`, with a header row of `columns` and a
     row per (quantity, value) of `rows`, each quantity a row header; all of it text.
-    `write(rows=...)` changes the rows.
+    `write(rows=...)` changes the rows; `cells` holds them as the page shows them.
 
     The rows travel as one text, their JSON (`cells`, `pairs_json`): a list of lists
     costs param and Bokeh a walk of every item at each change (~0.3 ms of server CPU for
@@ -219,8 +200,6 @@ class TextTable(WrittenHTML):
     caption = param.String(default="")
     columns = param.List(default=["Quantity", "Value"], item_type=str)
     cells = param.String(default="[]", allow_refs=False, doc="the rows as JSON (`rows`)")
-
-    MIRRORED: ClassVar[bool] = False  # (the server's text alone)
 
     _template = '<table id="table" class="readout"></table>'
     _scripts: ClassVar[dict[str, str]] = dict.fromkeys(
@@ -232,15 +211,6 @@ class TextTable(WrittenHTML):
         if rows is not None:
             params["cells"] = pairs_json(rows)
         super().__init__(**params)
-
-    @property
-    def rows(self) -> list[list[str]]:
-        """The (quantity, value) pairs of str, top to bottom, as the page shows them."""
-        return json.loads(self.shown("cells"))
-
-    @rows.setter
-    def rows(self, rows: list[list[str]]) -> None:
-        self.write(rows=rows)
 
     def write(self, **values: Any) -> None:
         """`WrittenHTML.write`, `rows` given as such."""

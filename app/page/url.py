@@ -105,8 +105,6 @@ class UrlWriter(WrittenHTML):
                          doc="the query's [key, value] pairs, in order, as JSON")
     delay_ms = param.Integer(default=400, bounds=(0, None))
 
-    MIRRORED: ClassVar[bool] = False  # (the server's text alone)
-
     _template = '<div id="url"></div>'
     _scripts: ClassVar[dict[str, str]] = dict.fromkeys(("render", "query"), _WRITE_URL)
 

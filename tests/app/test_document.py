@@ -8,6 +8,7 @@ from __future__ import annotations
 import base64
 import html
 import io
+import json
 import math
 import re
 
@@ -132,7 +133,7 @@ def test_widget_change_recomputes_every_source(ex: Explorer, widget: str, value:
 def readout_rows(ex: Explorer) -> list[tuple[str, str]]:
     """The (quantity, value) rows the derived-quantities table shows (the browser sets
     them as text: tests/app/test_accessibility.py reads the table drawn)."""
-    rows = ex.contact.readout.pane.rows
+    rows = json.loads(ex.contact.readout.pane.cells)
     assert all(len(r) == 2 and all(isinstance(x, str) for x in r) for r in rows)
     return [tuple(r) for r in rows]
 
@@ -333,6 +334,10 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
                                       (type(theta).__name__, theta.name, "value"),
                                       ("TextInput", None, "value")}
     assert ex.state.psi == ex.contact.controls.psi_slider.value == 2.51
+    # the parameters hold what the page shows: the URL and the table as sent
+    assert dict(json.loads(ex.url_writer.query))["psi"] == "2.51" == \
+        dict(json.loads(url.query))["psi"]
+    assert ex.contact.readout.pane.cells == doc.get_model_by_name("derived_quantities").cells
     events.clear()
     assert doc.get_model_by_name("radii") is None  # a closed tab's plot is not in the page
     # opening a tab brings it up to date

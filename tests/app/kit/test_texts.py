@@ -10,25 +10,24 @@ from app.kit.texts import TextTable
 
 
 def test_a_tables_rows_travel_as_json_the_sanitizer_leaves_alone() -> None:
-    """`TextTable.rows` reads back as given, and its JSON (`cells`, what the browser is
-    sent) holds no '<', '>' or '&' (Panel's HTML sanitizer would rewrite them)."""
+    """A `TextTable`'s rows read back as given from their JSON (`cells`, what the browser
+    is sent), which holds no '<', '>' or '&' (Panel's HTML sanitizer would rewrite them)."""
     rows = [["<b>q</b> & co", "<script>alert(1)</script>"], ["ψ", "1 < 2 > 0"]]
     table = TextTable(caption="c", rows=rows)
-    assert table.rows == rows
     assert not any(ch in table.cells for ch in "<>&")
     assert json.loads(table.cells) == rows
-    table.rows = [["a", "1"]]
-    assert table.rows == [["a", "1"]] and json.loads(table.cells) == [["a", "1"]]
+    table.write(rows=[["a", "1"]])
+    assert json.loads(table.cells) == [["a", "1"]]
     table.write(rows=[["b", "2"], ["c", "3"]])
-    assert table.rows == [["b", "2"], ["c", "3"]]
+    assert json.loads(table.cells) == [["b", "2"], ["c", "3"]]
 
 
 @pytest.mark.parametrize("rows", [[["a"]], [["a", 1]], [["a", "b", "c"]], [("a", None)]])
 def test_a_table_refuses_rows_that_are_not_pairs_of_text(rows) -> None:
     table = TextTable(caption="c")
     with pytest.raises(TypeError, match="rows must be"):
-        table.rows = rows
-    assert table.rows == []
+        table.write(rows=rows)
+    assert json.loads(table.cells) == []
 
 
 def test_the_url_writers_query_travels_as_json_the_sanitizer_leaves_alone() -> None:
@@ -47,12 +46,11 @@ def test_the_url_writers_query_travels_as_json_the_sanitizer_leaves_alone() -> N
     assert json.loads(writer.query) == pairs
 
 
-def test_a_text_only_the_server_writes_lives_in_its_data_model_once_rendered() -> None:
-    """`WrittenHTML.write` of a text the browser never sends back (`MIRRORED` False, a
-    description): rendered in the current document, the text goes to its data model
-    alone (`shown` reads it there; sent once, not again when equal); not rendered, the
-    parameter takes it.  A slider's value (`MIRRORED`) is kept on the component too:
-    Panel compares what the browser sends with it."""
+def test_a_written_text_is_held_by_its_parameter_and_sent_to_its_data_model() -> None:
+    """`WrittenHTML.write`: rendered in the current document, the change goes to its data
+    model (sent once, not again when equal) and the parameter holds it too, for a text
+    only the server writes (a description) as for a slider's value; not rendered, the
+    parameter takes it."""
     import panel as pn
     from bokeh.document import Document
     from panel.io.state import set_curdoc
@@ -62,7 +60,7 @@ def test_a_text_only_the_server_writes_lives_in_its_data_model_once_rendered() -
 
     loose = Description(label="l", name="loose")
     loose.write(description="first")
-    assert loose.description == loose.shown("description") == "first"
+    assert loose.description == "first"
 
     text = Description(label="fig", description="built", name="d_test")
     slider = LabelledSlider(label="s", value=1.0, start=0.0, end=5.0, name="s_test")
@@ -72,8 +70,7 @@ def test_a_text_only_the_server_writes_lives_in_its_data_model_once_rendered() -
         doc.on_change(events.append)
         text.write(description="moved")
         slider.write(value=2.0)
-        assert text.data_model(doc).description == text.shown("description") == "moved"
-        assert text.description == "built"  # (the text it was rendered with)
+        assert text.description == text.data_model(doc).description == "moved"
         assert slider.value == slider.data_model(doc).value == 2.0
         sent = [(e.model.name, e.attr, e.new) for e in events]
         assert ("d_test", "description", "moved") in sent
@@ -82,4 +79,4 @@ def test_a_text_only_the_server_writes_lives_in_its_data_model_once_rendered() -
         text.write(description="moved")
         slider.write(value=2.0)
         assert events == []
-    assert text.shown("description") == "built"  # (no current document: the parameter)
+    assert text.description == "moved"  # (no current document: the parameter, the same)

@@ -45,7 +45,7 @@ def test_texts_are_text_and_follow_their_model(browser) -> None:
         assert got == {"caption": "Derived <i>quantities</i>", "cls": "readout",
                        "scopes": ["col", "col", "row", "row"], "rows": rows, "elements": 0,
                        "name": "The <b>two</b> spheres", "text": "at τ = 1 rad: T = -0.046 T0"}
-        table.rows = [["a", "1"]]
+        table.write(rows=[["a", "1"]])
         figure.description = "at τ = 2 rad"
         # (two changes made outside the server's thread: each reaches the page in its
         # own message, in either order)
