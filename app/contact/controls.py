@@ -25,8 +25,9 @@ from app.contact.notes import NOTES
 from app.contact.physical_inputs import PhysicalInputs
 from app.contact.play_button import PlayButton
 from app.contact.state import PRESETS, ExplorerState, parse_tau, parse_value
+from app.kit.sliders import ExactSlider, LabelledSlider
 from app.kit.style import FORMULA_CSS, NOTE_STYLE
-from app.kit.widgets import ExactSlider, LabelledCheckbox, LabelledSlider, bind, follow
+from app.kit.widgets import LabelledCheckbox, bind, follow
 from core import Contact
 
 #: The sliders of the contact's four numbers: (name, label, start, end, step); their

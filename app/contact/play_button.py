@@ -3,7 +3,7 @@
 BokehJS draws a new <button> whenever a Button's label or colour changes, so the focused
 Play button was replaced by the Pause button under the keyboard (focus fell to the page's
 body, and Space then scrolled the page).  This one is the browser's own <button>, built
-once with Panel's public `ReactiveHTML` (as `app.kit.widgets.LabelledSlider` is): its
+once with Panel's public `ReactiveHTML` (as `app.kit.sliders.LabelledSlider` is): its
 label and colour change in place, and the keyboard stays on it after Enter, Space or a
 click.
 

@@ -34,7 +34,8 @@ from app.kit.batch import held
 from app.kit.figures import fit_range
 from app.kit.jobs import RUNNER
 from app.kit.progress import JobProgress
-from app.kit.widgets import ERROR_STYLE, ExactSlider, LabelledCheckbox, show_later, text_html
+from app.kit.sliders import ExactSlider
+from app.kit.widgets import ERROR_STYLE, LabelledCheckbox, show_later, text_html
 from app.kit.wire import inline
 from app.motor.fields import (
     FIELDS,

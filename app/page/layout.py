@@ -140,7 +140,7 @@ class Keys:
 #: (`app.kit.a11y.KeyShortcut`).
 PLAY_KEY = "k"
 
-#: The keys the page answers to (the sliders are `app.kit.widgets.LabelledSlider`s, range
+#: The keys the page answers to (the sliders are `app.kit.sliders.LabelledSlider`s, range
 #: inputs with Page Up / Down added; the curve tabs an `app.kit.a11y.TabList`; text
 #: boxes, menus, check boxes and buttons are the browser's own).
 KEYS = (

@@ -16,7 +16,8 @@ from typing import ClassVar
 
 import param
 
-from app.contact.state import ExplorerState, parse_query, query_value
+from app.contact.query import parse_query, query_value
+from app.contact.state import ExplorerState
 from app.kit.style import VISUALLY_HIDDEN_CSS
 from app.kit.texts import WrittenHTML, pairs_json
 from app.motor import PREFIX as MOTOR_PREFIX

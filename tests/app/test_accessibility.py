@@ -317,7 +317,7 @@ def test_check_boxes_have_names(names) -> None:
 
 
 def test_sliders_are_named_after_their_labels(names) -> None:
-    """Each slider (a range input, `app.kit.widgets.LabelledSlider`) is named by its label: the
+    """Each slider (a range input, `app.kit.sliders.LabelledSlider`) is named by its label: the
     same words as its number box's."""
     assert sorted(names["slider"]) == sorted([
         "ψ = tan θ / tan θ₀", "θ (°): drive angle, tan θ = u₀/H", "τ₀ (rad): contact starts",

@@ -23,7 +23,8 @@ from explorer_browser import (
 
 from app.contact import spheres
 from app.contact.phases import style
-from app.contact.state import PRESETS, ExplorerState, parse_query
+from app.contact.query import parse_query
+from app.contact.state import PRESETS, ExplorerState
 from app.kit.figures import CURVE_POINTS
 from core import Contact
 

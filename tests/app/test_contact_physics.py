@@ -10,7 +10,8 @@ import numpy as np
 
 from app.contact import spheres
 from app.contact.controls import DRIVE_NOTES
-from app.contact.state import ExplorerState, drive_angle, drive_ratio, parse_query
+from app.contact.query import parse_query
+from app.contact.state import ExplorerState, drive_angle, drive_ratio
 from app.page.explorer import Explorer
 from core import Contact
 

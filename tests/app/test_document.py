@@ -26,7 +26,8 @@ from app.contact.formulas import formulas
 from app.contact.notes import NOTES
 from app.contact.phases import STYLES
 from app.contact.player import frame_index, frame_taus
-from app.contact.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState, parse_query
+from app.contact.query import parse_query
+from app.contact.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState
 from app.contact.traction import PROFILE_COLUMNS, TractionScene
 from app.kit.figures import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
 from app.page.explorer import Explorer

@@ -21,7 +21,8 @@ from hypothesis import strategies as st
 from test_sessions import new_session, served, visit  # noqa: F401 (served: the fixture)
 
 import app.page.guard
-from app.contact.state import QUERY_KEYS, parse_query
+from app.contact.query import parse_query
+from app.contact.state import QUERY_KEYS
 from app.motor import QUERY_KEYS as MOTOR_KEYS
 from app.motor import MotorScene
 from app.page.bucket import AddressLimit
@@ -184,7 +185,7 @@ def test_the_limit_forgets_idle_clients_and_stays_bounded() -> None:
 
 
 def test_a_client_past_its_page_builds_gets_the_short_page(served, monkeypatch) -> None:  # noqa: F811
-    from load_test import REFUSED
+    from bokeh_client import REFUSED
 
     url, server = served
     monkeypatch.setattr(app.page.guard, "BUILDS", AddressLimit(burst=2, rate=1e-6))
@@ -287,7 +288,7 @@ def test_a_page_that_cannot_be_served_shows_no_traceback(served, monkeypatch, ca
     """Whatever raises while the explorer is put into the page, the visitor gets a short
     note and the server one log line: Panel would print the traceback and show it on
     the page (it catches what an on-load callback raises)."""
-    from load_test import FAILED
+    from bokeh_client import FAILED
 
     url, server = served
 

@@ -18,7 +18,8 @@ from explorer_browser import open_explorer
 
 import core
 from app.contact.physical_inputs import FIELDS, REFUSED, box_text, display, to_si, to_user, warning
-from app.contact.state import SI_KEYS, parse_query
+from app.contact.query import parse_query
+from app.contact.state import SI_KEYS
 from app.page.explorer import Explorer
 from core import DOMAIN, MATERIALS, Contact
 

@@ -30,7 +30,8 @@ from explorer_browser import JS_READY, ROOT, free_port, wait_for_http
 from tornado.httpclient import HTTPClientError, HTTPRequest
 from tornado.websocket import WebSocketClosedError, websocket_connect
 
-from app.contact.state import QUERY_KEYS, parse_query
+from app.contact.query import parse_query
+from app.contact.state import QUERY_KEYS
 from app.serve import SESSION
 
 #: One payload per query parameter, each marked so that an injected element is found.

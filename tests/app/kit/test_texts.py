@@ -55,8 +55,8 @@ def test_a_written_text_is_held_by_its_parameter_and_sent_to_its_data_model() ->
     from bokeh.document import Document
     from panel.io.state import set_curdoc
 
+    from app.kit.sliders import LabelledSlider
     from app.kit.texts import Description
-    from app.kit.widgets import LabelledSlider
 
     loose = Description(label="l", name="loose")
     loose.write(description="first")
