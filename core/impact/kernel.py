@@ -11,10 +11,11 @@ for lengths in a* = sqrt(R* alpha*)). With these the equations of motion are
     D'' = -(15/8) chi T                         D(0) = 0, D'(0) = Psi1
 
 P = (4/3) d^(3/2) the Hertz force in E* alpha* a* (here the springs' sum, which tends to
-it as the number of springs grows), T the tangential force in mu E* alpha* a*, opposing D;
+it as the number of springs grows), T the tangential force in mu E* alpha* a*, opposing D,
+each spring bounded by mu times its share of the total normal force (``step``);
 chi and Psi1 those of ``bodies.Impact``, gamma the normal dashpot (0 for e = 1,
-``normal.dashpot``). The normal force is the springs' own (march's P), so that the Coulomb
-bound |T| <= mu P of every spring adds up to the same P that moves the bodies.
+``normal.dashpot``). The normal force is the springs' own sum, so that the Coulomb bounds
+of the springs add up to mu times the force that moves the bodies.
 
 One step of length h (kick-drift-kick): half kicks with the old forces, drift of d and D,
 one ``march`` step of the springs from (d, D) to (d_new, D_new), half kicks with the new
@@ -27,6 +28,8 @@ gives fixed steps of h0 (for measuring the step's own order).
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 from numba import njit
@@ -54,24 +57,48 @@ def _normal(P, d, dv_half, h, gamma):
 
 
 @njit(cache=True, nogil=True)
+def spring_force(x, d, scale):
+    """The springs' normal force, scale * sum of (d - x_i^2)_+ over the row (x increasing),
+    summed as ``march`` sums it."""
+    s = 0.0
+    for i in range(x.size):
+        w = d - x[i] * x[i]
+        if w <= 0.0:
+            break
+        s += w
+    return scale * s
+
+
+@njit(cache=True, nogil=True)
 def step(h, d, dv, D, Dv, f, T, u, x, scale, chi, gamma):
     """One Verlet step of length h from (d, d', D, D') with forces (f, T) there; u (the
     springs) is updated in place. Returns (d, d', D, D', f, T, slip work of the step in
-    mu E* alpha* a* delta*)."""
+    mu E* alpha* a* delta*).
+
+    The Coulomb bound of each spring is mu times its share of the total normal force f
+    (elastic plus dashpot), shared like the elastic force: mu k w with k = f / ((15/16) P)
+    at the step's end. ``march`` is given the approach k d and the positions k^(1/2) x,
+    which scales every spring's bound w = d - x^2 by k without changing which springs
+    touch; k = 1 without a dashpot (e = 1)."""
     kt = (15.0 / 8.0) * chi
     dvh = dv - 0.5 * h * f
     Dvh = Dv + 0.5 * h * (-kt * T)
     dn = d + h * dvh
     Dn = D + h * Dvh
+    Pn = spring_force(x, max(dn, 0.0), scale)
+    dvn, fn = _normal(Pn, dn, dvh, h, gamma)
+    k = 1.0
+    if gamma != 0.0 and Pn > 0.0:
+        k = fn / ((15.0 / 16.0) * Pn)
     dd = np.empty(2)
     dr = np.empty(2)
-    dd[0] = max(d, 0.0)
-    dd[1] = max(dn, 0.0)
+    dd[0] = k * max(d, 0.0)
+    dd[1] = k * max(dn, 0.0)
     dr[0] = D
     dr[1] = Dn
-    Ts, Ps, _, Ss = march(x, dd, dr, scale, u)
+    xs = x if k == 1.0 else x * math.sqrt(k)
+    Ts, _, _, Ss = march(xs, dd, dr, scale, u)
     Tn = Ts[1]
-    dvn, fn = _normal(Ps[1], dn, dvh, h, gamma)
     Dvn = Dvh - 0.5 * h * kt * Tn
     return dn, dvn, Dn, Dvn, fn, Tn, Ss[1]
 

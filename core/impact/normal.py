@@ -10,9 +10,10 @@ form of LAMMPS' ``damping tsuji``). In the units of ``kernel`` it is gamma d^(1/
 with gamma = c (5/4)^(1/2), independent of the speed, so e depends on gamma alone;
 ``dashpot(e)`` finds gamma by the secant method on the normal impact itself (the same springs,
 integrator and tolerance as the full impact), so that the reference rebounds with e to
-the integrator's tolerance. The Coulomb bound of each spring stays on its elastic force:
-the dashpot adds no frictional capacity (a second model choice; it makes the tangential
-impulse of gross sliding mu times the elastic normal impulse, not mu (1 + e) m_n v_n).
+the integrator's tolerance. Coulomb's bound is on the total normal force, elastic plus
+dashpot, shared among the springs like the elastic force (a second model choice,
+``kernel.step``): gross sliding then gives the rigid-body tangential impulse
+mu (1 + e) m_n v_n.
 
 LAMMPS' ``damping tsuji`` takes e and sets c from Tsuji's polynomial fit
 (``tsuji_coefficient``); its restitution is then e to the accuracy of the fit.

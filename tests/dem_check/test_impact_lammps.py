@@ -53,9 +53,9 @@ def test_gross_sliding_follows_the_rigid_body_law(test4, model):
 def test_small_incidence_separates_the_models_from_the_reference(test4):
     ex, mindlin = test4["mindlin", 5.0]
     _, force = test4["mindlin/force", 5.0]
-    # the exact history: 0.741, rebound +0.47 deg; mindlin's total-displacement rule
+    # the exact history: 0.737; mindlin's total-displacement rule
     # is too stiff (0.953, +4.2 deg), mindlin/force in between (0.893)
-    assert ex.tangential_cor == pytest.approx(0.7406, abs=2e-3)
+    assert ex.tangential_cor == pytest.approx(0.7369, abs=2e-3)
     assert mindlin.tangential_cor - ex.tangential_cor > 0.15
     assert ex.tangential_cor < force.tangential_cor < mindlin.tangential_cor
     # Kharaz et al.'s measurement at 4.2 deg (0.746) sides with the reference
