@@ -43,6 +43,16 @@ def test_gross_sliding_reaches_the_rigid_body_law(deg):
     assert r.psi2 == pytest.approx(r.psi1 - 4 * CHI, abs=1e-7)
 
 
+@pytest.mark.parametrize("deg, slack", [(60.0, 1e-6), (85.0, 1e-7)])
+def test_gross_sliding_with_the_dashpot_follows_the_law_with_e(deg, slack):
+    # Coulomb's bound on the total normal force: J_t = mu (1 + e) m_n v_n, but for the
+    # first springs, which stick where the dashpot dominates at first touch (3e-7 at 60)
+    r = solve(oblique(deg, e=0.98), tol=1e-10)
+    law = 1 - 0.092 * 1.98 / math.tan(math.radians(deg))
+    assert r.normal_cor == pytest.approx(0.98, abs=1e-8)
+    assert 0.0 <= r.tangential_cor - law < slack
+
+
 def test_sliding_threshold_is_four_chi():
     # just below psi1 = 4 chi the contact sticks at the end and psi2 > psi1 - 4 chi
     below = normalised(4 * CHI * 0.8, CHI)
