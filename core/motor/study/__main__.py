@@ -117,8 +117,8 @@ def cmd_summary(args: argparse.Namespace) -> int:
         if row is None:
             print(f"  {merit}: none")
             continue
-        print(f"  {merit} = {float(row[merit]):.6g} {units[merit]} at "
-              f"{_row_text(row, axes)}")
+        unit = "" if units[merit] == "1" else f" {units[merit]}"
+        print(f"  {merit} = {float(row[merit]):.6g}{unit} at {_row_text(row, axes)}")
     first, _, second = args.pareto.partition(",")
     front = summary.pareto(ds, first.strip(), second.strip())
     print(f"\nPareto front of {first} ({units[first]}) and {second} ({units[second]}): "
@@ -168,8 +168,8 @@ def main(argv: list[str] | None = None) -> int:
     p.set_defaults(func=cmd_run)
     p = sub.add_parser("summary", help="best designs and a Pareto front")
     p.add_argument("store")
-    p.add_argument("--pareto", default="stall_thrust,best_efficiency", metavar="A,B",
-                   help="two figures of merit (default stall_thrust,best_efficiency)")
+    p.add_argument("--pareto", default="stall_thrust,no_load_speed", metavar="A,B",
+                   help="two figures of merit (default stall_thrust,no_load_speed)")
     p.add_argument("--top", type=int, default=20, help="front rows shown (default 20)")
     p.set_defaults(func=cmd_summary)
     p = sub.add_parser("export", help="every design as CSV")
