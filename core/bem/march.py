@@ -61,9 +61,9 @@ class StepSettings:
     slip, units a^2 / R_e), ``outer_tol`` (largest change of p or q between outer
     iterations, units p*), ``max_outer``."""
 
-    normal_tol: float = 1e-10
-    slip_tol: float = 1e-10
-    outer_tol: float = 1e-9
+    normal_tol: float = 1e-8
+    slip_tol: float = 1e-8
+    outer_tol: float = 1e-8
     max_outer: int = 60
 
 

@@ -117,7 +117,7 @@ def test_spence_small_grid():
     np.testing.assert_allclose(q.qx, -q.qx[::-1, :], atol=1e-9)
     np.testing.assert_allclose(q.qx, q.qx[:, ::-1], atol=1e-9)
     np.testing.assert_allclose(q.qy, q.qx.T, atol=1e-9)
-    assert abs(q.qx.sum()) < 1e-9 and abs(q.qy.sum()) < 1e-9
+    assert abs(q.qx.sum()) < 1e-7 and abs(q.qy.sum()) < 1e-7  # solver tolerance
     assert np.abs(q.qx).max() > 0.05  # the coupling does shear the contact
 
 
