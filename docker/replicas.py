@@ -10,7 +10,7 @@ replicas allow the websocket origin of the balancer (127.0.0.1:PORT, localhost:P
 which is what a browser sends through it.
 
 `smoke` checks, through the balancer, speaking Bokeh's protocol as a browser does
-(benchmarks/app/load_test.py's Session: GET /main with its cookies, then the websocket,
+(benchmarks/app/client.py's Session: GET /main with its cookies, then the websocket,
 then a ψ move answered by the plots' update):
 
 1. sessions opened (at least 6) until both replicas hold some (at most 24), each moving the slider
@@ -226,10 +226,12 @@ class Stack:
 
 
 def _load_test():
-    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
-    import load_test
+    """The benchmarks' Bokeh-protocol client (benchmarks/app/client.py)."""
+    if str(ROOT) not in sys.path:  # (run as `python docker/replicas.py`)
+        sys.path.insert(0, str(ROOT))
+    from benchmarks.app import client
 
-    return load_test
+    return client
 
 
 def log(msg: str) -> None:

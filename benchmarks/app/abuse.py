@@ -1,6 +1,6 @@
-"""The abuse mode of the load test (``benchmarks/app/load_test.py --abuse``, issue 22).
+"""The abuse mode of the load test (``python -m benchmarks.app.load_test --abuse``).
 
-One probe session (`load_test.Session`) moves ψ every ``--interval`` s; per kind of
+One probe session (`benchmarks.app.client.Session`) moves ψ every ``--interval`` s; per kind of
 abusive client (`ABUSE_KINDS`: websockets with invented session ids, PULL-DOC spam, the
 Methods card at 16x with live recompute, NaN as ψ, a page-load loop) it is recorded for
 a window alone, then for a window beside one abusive client of that kind, interleaved
@@ -8,8 +8,8 @@ in one run against one server.  Per kind: the probe's p50/p95 alone and beside, 
 p95 ratio against the 1.5x target (`ABUSE_TARGET`), moves answered, the server's CPU
 and the lines it logged.  Run through load_test.py:
 
-    python benchmarks/app/load_test.py --abuse --window 30
-    python benchmarks/app/load_test.py --abuse pull-doc nan --window 20
+    python -m benchmarks.app.load_test --abuse --window 30
+    python -m benchmarks.app.load_test --abuse pull-doc nan --window 20
 """
 
 from __future__ import annotations
@@ -21,11 +21,11 @@ import sys
 import time
 from pathlib import Path
 
-from tornado.httpclient import AsyncHTTPClient
+from tornado.httpclient import AsyncHTTPClient, HTTPClientError
 from tornado.websocket import WebSocketClosedError
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from load_test import REFUSED, Session, Stats, _strings, models_of, pct, usage
+from benchmarks.app.client import REFUSED, Session, Stats, models_of, strings
+from benchmarks.app.common import pct, usage
 
 #: The abusive clients of `--abuse`, in the order they run (the page-load loops last:
 #: they use up the page builds of the address every client here shares, 127.0.0.1).
@@ -79,7 +79,7 @@ def methods_card(doc_json: dict) -> str:
     """The id of the Methods card (a Panel Card whose header names it) in a document."""
     models, _ = models_of(doc_json)
     cards = [i for i, m in models.items() if m.get("name") == "panel.models.layout.Card"
-             and any(METHODS_TITLE in t for t in _strings(m.get("attributes", {}).get("children")))]
+             and any(METHODS_TITLE in t for t in strings(m.get("attributes", {}).get("children")))]
     if len(cards) != 1:
         raise LookupError(f"expected one Methods card, found {len(cards)}")
     return cards[0]
@@ -153,6 +153,9 @@ async def abuse_invented_ids(url: str, http: AsyncHTTPClient, stop: asyncio.Even
         try:
             await asyncio.wait_for(s.connect(token), 30)
             counts["accepted"] = counts.get("accepted", 0) + 1
+        except HTTPClientError as err:  # (refused before the handshake)
+            key = f"refused (HTTP {err.code})"
+            counts[key] = counts.get(key, 0) + 1
         except (TimeoutError, ConnectionError, WebSocketClosedError, OSError):
             counts["refused"] = counts.get("refused", 0) + 1
         finally:
@@ -160,20 +163,25 @@ async def abuse_invented_ids(url: str, http: AsyncHTTPClient, stop: asyncio.Even
 
 
 async def flood(url: str, http: AsyncHTTPClient, stop: asyncio.Event, counts: dict,
-                rate: float, message, reply: str, replies: str) -> None:
+                rate: float, message, reply: str, replies: str,
+                ready: asyncio.Event | None = None) -> None:
     """A loaded session sending `message(session, n)` (a message type and its content)
     for n = 0, 1, ..., up to `rate` a second, without waiting for the replies (its
     reader takes them), until `stop` or the server closes it; counts those sent and,
-    as `replies`, the server's messages of type `reply` (and its ERROR replies)."""
+    as `replies`, the server's messages of type `reply` (and its ERROR replies).
+    `ready` (if given) is set once the session is loaded: the flood starts then."""
     s = Session(url, http, 5.0, None)
     await s.open()
+    if ready is not None:
+        ready.set()
+        await asyncio.sleep(0)
     n = 0
     try:
         async for _ in paced(stop, rate):
             if not s.alive:
                 counts["connection closed by the server"] = 1
                 break
-            await s._send(*message(s, n))
+            await s.send(*message(s, n))
             n += 1
     except WebSocketClosedError:
         counts["connection closed by the server"] = 1
@@ -186,12 +194,12 @@ async def flood(url: str, http: AsyncHTTPClient, stop: asyncio.Event, counts: di
 
 
 async def abuse_pull_doc(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
-                         counts: dict) -> None:
+                         counts: dict, ready: asyncio.Event | None = None) -> None:
     """A loaded session sending PULL-DOC requests, up to `PULL_DOC_RATE` a second,
-    without waiting for the replies (past its session's few, the server refuses them:
-    `app.page.pulls`); closed at the end."""
+    without waiting for the replies (the server closes a connection at its second:
+    `app.page.websocket`); closed at the end."""
     await flood(url, http, stop, counts, PULL_DOC_RATE, lambda s, n: ("PULL-DOC-REQ", {}),
-                "PULL-DOC-REPLY", "replies")
+                "PULL-DOC-REPLY", "replies", ready)
 
 
 async def abuse_methods_16x(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
@@ -202,7 +210,7 @@ async def abuse_methods_16x(url: str, http: AsyncHTTPClient, stop: asyncio.Event
     await s.open()
     try:
         s.patches = []
-        await s._send("PATCH-DOC", {"events": [changed(methods_card(s.doc), "collapsed",
+        await s.send("PATCH-DOC", {"events": [changed(methods_card(s.doc), "collapsed",
                                                        False)]})
         end = time.perf_counter() + 30
         controls = None
@@ -219,7 +227,7 @@ async def abuse_methods_16x(url: str, http: AsyncHTTPClient, stop: asyncio.Event
         for role in ("live", "resolution", "methods"):
             model, value = controls[role]
             attr = {"live": "active", "resolution": "value", "methods": "value"}[role]
-            await s._send("PATCH-DOC", {"events": [changed(model, attr, value)]})
+            await s.send("PATCH-DOC", {"events": [changed(model, attr, value)]})
         counts["methods"] = len(controls["methods"][1])
         async for _ in paced(stop, 1.0 / interval):
             if not s.pending:
@@ -230,14 +238,15 @@ async def abuse_methods_16x(url: str, http: AsyncHTTPClient, stop: asyncio.Event
 
 
 async def abuse_nan(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
-                    counts: dict) -> None:
+                    counts: dict, ready: asyncio.Event | None = None) -> None:
     """A session sending NaN and ±inf as the ψ slider's value, up to `NAN_RATE` a
     second; counts the server's ERROR replies."""
     def value(s: Session, n: int) -> tuple[str, dict]:
         event = changed(s.slider, "value", NAN_VALUES[n % len(NAN_VALUES)])
         return "PATCH-DOC", {"events": [event]}
 
-    await flood(url, http, stop, counts, NAN_RATE, value, "ERROR", "server ERROR replies")
+    await flood(url, http, stop, counts, NAN_RATE, value, "ERROR", "server ERROR replies",
+                ready)
 
 
 async def abuse_page_load_loop_steady(url: str, http: AsyncHTTPClient, stop: asyncio.Event,
@@ -246,13 +255,15 @@ async def abuse_page_load_loop_steady(url: str, http: AsyncHTTPClient, stop: asy
     await abuse_page_load_loop(url, http, stop, counts, ready)
 
 
-#: The abusers that set their `ready` event themselves (the others are recorded from
-#: their start).
-PRELUDE = {"page-load-loop-steady": abuse_page_load_loop_steady}
+#: The abusers that set their `ready` event themselves, recorded from then on (the others
+#: from their start): the floods of messages once their page is loaded (a page load is
+#: what the page-load loops measure), the steady page-load loop once the address's
+#: page builds are spent.
+PRELUDE = {"pull-doc": abuse_pull_doc, "nan": abuse_nan,
+           "page-load-loop-steady": abuse_page_load_loop_steady}
 
 ABUSERS = {"page-loop": abuse_page_loop, "page-load-loop": abuse_page_load_loop,
-           "invented-ids": abuse_invented_ids, "pull-doc": abuse_pull_doc,
-           "methods-16x": abuse_methods_16x, "nan": abuse_nan, **PRELUDE}
+           "invented-ids": abuse_invented_ids, "methods-16x": abuse_methods_16x, **PRELUDE}
 
 
 def log_lines(log: Path | None) -> tuple[int, int]:

@@ -9,7 +9,7 @@ Measures
       playing.
 Serves the app itself with `python -m app.serve` unless EXPLORER_URL is set.
 
-    .venv/bin/python benchmarks/app/app_latency.py [--moves 30] [--seconds 5]
+    .venv/bin/python -m benchmarks.app.app_latency [--moves 30] [--seconds 5]
                                                [--width 1600] [--height 1400]
                                                [--runs 1] [--revs REV [REV ...]]
 
@@ -28,19 +28,14 @@ import argparse
 import contextlib
 import re
 import statistics
-import subprocess
-import sys
-import tempfile
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT), str(ROOT / "tests" / "app")]
-
-from explorer_browser import (  # noqa: E402
+from benchmarks.app.common import (
     CHROMIUM_ARGS,
     chromium_path,
     explorer_server,
     open_explorer,
+    worktree,
+    yardstick_us,
 )
 
 #: What a psi move changes (the impulse curve itself depends on tau0 only: its marker;
@@ -173,17 +168,6 @@ def measure(url: str, moves: int, seconds: float, width: int = 1600,
     }
 
 
-def machine_reference() -> float:
-    """Microseconds for one closed-form contact (``closed_form_time``, psi = 0.4,
-    tau0 = pi/6): a yardstick of the machine's speed at the time of the run. On the
-    shared 2-core VM it read ~50 us in its fast phases and ~90 us in its slow ones, and
-    the latency figures move with it."""
-    from core import Contact
-    from core.numerics.metrics import closed_form_time
-
-    return 1e6 * min(closed_form_time(Contact, 0.4, 0.5235987755982988) for _ in range(5))
-
-
 def report(label: str, rows: list[dict[str, float]]) -> None:
     """Print one arm's runs: per-run medians and frame rates, and how many meet the targets
     (median <= 100 ms, >= 30 frames/s)."""
@@ -198,20 +182,6 @@ def report(label: str, rows: list[dict[str, float]]) -> None:
           f"median {statistics.median(fps):.1f} frames/s")
 
 
-@contextlib.contextmanager
-def worktree(rev: str):
-    """A checkout of git revision `rev` in a temporary directory (removed afterwards)."""
-    with tempfile.TemporaryDirectory(prefix="ab-") as tmp:
-        path = Path(tmp) / "tree"
-        subprocess.run(["git", "-C", str(ROOT), "worktree", "add", "--detach", str(path), rev],
-                       check=True, capture_output=True)
-        try:
-            yield path
-        finally:
-            subprocess.run(["git", "-C", str(ROOT), "worktree", "remove", "--force", str(path)],
-                           check=False, capture_output=True)
-
-
 def main() -> None:
     """Command line entry: print the figures."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -223,7 +193,7 @@ def main() -> None:
     ap.add_argument("--revs", nargs="+", metavar="REV",
                     help="measure these git revisions (paired) instead of the working tree")
     args = ap.parse_args()
-    before = machine_reference()
+    before = yardstick_us()
     size = (args.moves, args.seconds, args.width, args.height)
     with contextlib.ExitStack() as stack:
         arms = ({rev: stack.enter_context(worktree(rev)) for rev in args.revs} if args.revs
@@ -235,7 +205,7 @@ def main() -> None:
             order = list(arms) if i % 2 == 0 else list(reversed(arms))
             for k in order:
                 rows[k].append(measure(urls[k], *size))
-    after = machine_reference()
+    after = yardstick_us()
     shown, plots = next(iter(rows.values()))[0]["in_view"]
     print(f"page {args.width}x{args.height}: {shown} of {plots} plots in view; "
           f"{args.moves} psi moves and {args.seconds:g} s of animation per run")

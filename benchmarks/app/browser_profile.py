@@ -5,7 +5,7 @@ A CPU profile (Chrome DevTools protocol, 100 us sampling) of 24 psi slider steps
 unminified (BOKEH_MINIFIED=false, so that its functions keep their names).  Prints the
 moves' latencies and, per move, the functions with the most self and inclusive time.
 
-    .venv/bin/python benchmarks/app/browser_profile.py [--moves 24] [--top 40]
+    .venv/bin/python -m benchmarks.app.browser_profile [--moves 24] [--top 40]
 """
 
 from __future__ import annotations
@@ -14,14 +14,10 @@ import argparse
 import collections
 import os
 import statistics
-import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT), str(ROOT / "tests" / "app"), str(ROOT / "benchmarks" / "app")]
-
-import app_latency  # noqa: E402
-from explorer_browser import (  # noqa: E402
+from benchmarks.app import app_latency
+from benchmarks.app.common import (
     CHROMIUM_ARGS,
     chromium_path,
     explorer_server,

@@ -12,7 +12,7 @@ Target: (b) <= 3 s on the project's 2-core machine.  For scale, (c) a second pag
 the same server, from its opening to its plots drawn.  `--warm` keeps numba's cache of
 this checkout (a second start).
 
-    .venv/bin/python benchmarks/app/first_page.py [--warm] [--runs 1]
+    .venv/bin/python -m benchmarks.app.first_page [--warm] [--runs 1]
 """
 
 from __future__ import annotations
@@ -23,12 +23,8 @@ import subprocess
 import sys
 import tempfile
 import time
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT), str(ROOT / "tests" / "app")]
-
-from explorer_browser import CHROMIUM_ARGS, JS_READY, chromium_path, free_port  # noqa: E402
+from benchmarks.app.common import CHROMIUM_ARGS, JS_READY, ROOT, chromium_path, free_port
 
 #: JavaScript: resolves once the page has painted twice after its data arrived.
 JS_PAINTED = "() => new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))"

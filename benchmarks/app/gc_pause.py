@@ -13,8 +13,8 @@ after a session closes is timed.  Two arms, each in a fresh process, alternated
 Per arm: the close's pause (ms: the interpreter held, no session served), and the full
 collections Python ran by itself while the class joined (count and their total ms).
 
-    .venv/bin/python benchmarks/app/gc_pause.py
-    .venv/bin/python benchmarks/app/gc_pause.py --sessions 40 --runs 3
+    .venv/bin/python -m benchmarks.app.gc_pause
+    .venv/bin/python -m benchmarks.app.gc_pause --sessions 40 --runs 3
 """
 
 from __future__ import annotations
@@ -25,9 +25,9 @@ import statistics
 import subprocess
 import sys
 import time
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
+from benchmarks.app.common import ROOT
+
 ARMS = ("python", "sessions")
 
 
@@ -88,7 +88,7 @@ def main() -> None:
     rows = []
     for run in range(args.runs):
         for name in ARMS:
-            out = subprocess.run([sys.executable, __file__, "--arm", name,
+            out = subprocess.run([sys.executable, "-m", "benchmarks.app.gc_pause", "--arm", name,
                                   "--sessions", str(args.sessions)], cwd=ROOT, check=True,
                                  capture_output=True, text=True, timeout=900).stdout
             rows.append({"run": run + 1, **json.loads(out.splitlines()[-1])})
@@ -106,5 +106,4 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    sys.path.insert(0, str(ROOT))
     main()

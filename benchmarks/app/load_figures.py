@@ -1,8 +1,8 @@
 """The load test's figures beyond latency: how evenly the server processes share the
 work, what a move costs in closed-form contacts, and the sizing rule.
 
-Used by benchmarks/app/load_test.py (its levels); pure functions but for the ones that
-read processes (psutil) or time the yardstick.
+Used by `benchmarks.app.load_test` (its levels); pure functions but for the ones that
+read processes (psutil).
 """
 
 from __future__ import annotations
@@ -106,15 +106,6 @@ def process_placement(port: int):
         return sessions_by_process(serving, port)
 
     return placed
-
-
-def yardstick_us() -> float:
-    """Microseconds of one closed-form contact (``closed_form_time(Contact, 0.4, pi/6)``,
-    best of 5): the machine's speed, as benchmarks/app/page_load.py and soak.py read it."""
-    from core import Contact
-    from core.numerics.metrics import closed_form_time
-
-    return 1e6 * min(closed_form_time(Contact, 0.4, math.pi / 6) for _ in range(5))
 
 
 def per_move(cpu_s: float, moves: int, yardstick: float) -> dict:

@@ -28,7 +28,7 @@ Per serving process (`load_figures`: each replica, or each forked ``--num-procs`
 child) it reports the CPU over the window, the busiest over their mean (target 1.3x)
 and its sessions (from the balancer's log, or the process's websockets); the server's
 CPU per answered move in ms and in closed-form contacts (the yardstick of
-benchmarks/app/page_load.py, read after each level), and the machine's load average.
+`benchmarks.app.common.yardstick_us`, read after each level), and the machine's load average.
 At the end: the sizing rule, the most sessions per serving process (one core each)
 whose p95 stays within 200 ms.
 
@@ -36,14 +36,14 @@ Bounded: at most ``--max-sessions`` (200) sessions, every level ends after its
 duration, every wait has a timeout, and the target must be a loopback address.
 
     # a server started here (python -m app.serve, 2 processes = one per core):
-    python benchmarks/app/load_test.py --serve 2
+    python -m benchmarks.app.load_test --serve 2
     # any running server or balancer on this machine, its processes found by port:
-    python benchmarks/app/load_test.py --url http://127.0.0.1:8080/main --pids 1234,1240
+    python -m benchmarks.app.load_test --url http://127.0.0.1:8080/main --pids 1234,1240
     # two replicas behind nginx (docker/replicas.py), everything started and stopped here
     # (make load-test):
-    python benchmarks/app/load_test.py --replicas 2
+    python -m benchmarks.app.load_test --replicas 2
 
-Abuse (``--abuse [KIND ...]``, issue 22; benchmarks/app/abuse.py): one probe session moving ψ every
+Abuse (``--abuse [KIND ...]``, `benchmarks.app.abuse`): one probe session moving ψ every
 ``--interval`` s; per kind a ``--window`` alone, then one beside a single abusive client
 of that kind (`ABUSE_KINDS`: a page-load loop, websockets with invented session ids,
 PULL-DOC spam, the Methods card at 16x with live recompute, NaN as ψ), interleaved in one
@@ -51,8 +51,8 @@ run against one server (``--serve 1`` unless given).  Per kind: the probe's p50/
 and beside, their p95 ratio against the 1.5x target, moves answered, the server's CPU and
 the lines it logged (its output goes to a file):
 
-    python benchmarks/app/load_test.py --abuse --window 30
-    python benchmarks/app/load_test.py --abuse pull-doc nan --window 20
+    python -m benchmarks.app.load_test --abuse --window 30
+    python -m benchmarks.app.load_test --abuse pull-doc nan --window 20
 
 Results: a table on stdout, and ``--json FILE`` for the raw figures.
 """
@@ -61,378 +61,31 @@ from __future__ import annotations
 
 import argparse
 import asyncio
-import ipaddress
 import json
 import os
 import random
-import re
 import signal
-import statistics
-import subprocess
 import sys
 import tempfile
 import time
-from dataclasses import dataclass, field
-from http.cookies import SimpleCookie
 from pathlib import Path
 from urllib.parse import urlsplit
 
-from tornado.httpclient import AsyncHTTPClient, HTTPRequest
-from tornado.websocket import WebSocketClosedError, websocket_connect
+from tornado.httpclient import AsyncHTTPClient
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tests" / "app"))
-
-from explorer_browser import free_port  # noqa: E402
-from explorer_browser import wait_for_http as wait_http  # noqa: E402
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import load_figures  # noqa: E402
-
-#: The event BokehJS sends when the page's document is rendered (a PATCH-DOC event).
-DOCUMENT_READY = {"kind": "MessageSent", "msg_type": "bokeh_event",
-                  "msg_data": {"type": "event", "name": "document_ready",
-                               "values": {"type": "map"}}}
-TOKEN = re.compile(r'\\?"token\\?":\s*\\?"([^"\\]+)')
-#: Texts of the notes a client past its page builds gets, and one whose page could not
-#: be served (`app.page.guard.refusal_note`, `failure_note`).
-REFUSED = "Too many pages were opened from your network"
-FAILED = "This page could not be shown"
-PSI_LABEL = re.compile(r"^\s*ψ(\s|=|$)")
-
-
-# ---------------------------------------------------------------- the document
-
-
-def models_of(doc_json: dict) -> tuple[dict[str, dict], dict[str, str]]:
-    """All model representations in a serialized document, by id, and each one's parent."""
-    models: dict[str, dict] = {}
-    parent: dict[str, str] = {}
-
-    def walk(obj, owner: str | None) -> None:
-        if isinstance(obj, dict):
-            if "id" in obj and obj.get("type") == "object":
-                mid = obj["id"]
-                if "attributes" in obj or mid not in models:
-                    models[mid] = obj
-                if owner is not None and mid != owner:
-                    parent.setdefault(mid, owner)
-                owner = mid
-            for v in obj.values():
-                walk(v, owner)
-        elif isinstance(obj, list):
-            for v in obj:
-                walk(v, owner)
-
-    walk(doc_json, None)
-    return models, parent
-
-
-def _strings(obj) -> list[str]:
-    if isinstance(obj, str):
-        return [obj]
-    if isinstance(obj, dict):
-        return [s for v in obj.values() for s in _strings(v)]
-    if isinstance(obj, list):
-        return [s for v in obj for s in _strings(v)]
-    return []
-
-
-def find_targets(doc_json: dict, slider: str | None = None) -> tuple[str, str, float, float]:
-    """(slider id, force source id, slider start, slider end) in a pulled document.
-
-    A slider is a BokehJS Slider model, or the values of the app's `LabelledSlider` (the
-    `data` of its ReactiveHTML model: value, start, end, step and label).  The ψ slider
-    is the slider named ``slider`` (default ``psi``) if there is one; else the slider
-    whose title or label, or the label next to it (a text in the smallest layout around
-    it that holds no other slider), starts with "ψ".
-    """
-    models, parent = models_of(doc_json)
-    force = [i for i, m in models.items() if m.get("name") == "ColumnDataSource"
-             and m.get("attributes", {}).get("name") == "force"]
-    if len(force) != 1:
-        raise LookupError(f"expected one ColumnDataSource named 'force', found {len(force)}")
-    def attrs(i: str) -> dict:
-        return models[i].get("attributes", {})
-
-    sliders = [i for i, m in models.items() if m.get("name") == "Slider"
-               or {"value", "start", "end", "step", "label"} <= set(attrs(i))]
-
-    wanted = slider or "psi"
-    named = [i for i in sliders if attrs(i).get("name") == wanted]
-    if slider and not named:
-        raise LookupError(f"no slider named {slider!r}")
-    if not named:
-        descendants: dict[str, set[str]] = {}
-        for child in models:
-            p = parent.get(child)
-            while p is not None:
-                descendants.setdefault(p, set()).add(child)
-                p = parent.get(p)
-        for i in sliders:
-            if PSI_LABEL.match(str(attrs(i).get("title") or attrs(i).get("label") or "")):
-                named.append(i)
-                continue
-            p = parent.get(i)
-            while p is not None:
-                inside = descendants.get(p, set())
-                if any(j in inside for j in sliders if j != i):
-                    break  # this layout holds other sliders too: not the slider's own
-                texts = [s for j in inside if j != i for s in _strings(attrs(j))]
-                if any(PSI_LABEL.match(s) for s in texts):
-                    named.append(i)
-                    break
-                p = parent.get(p)
-    if len(named) != 1:
-        raise LookupError(f"expected one ψ slider, found {len(named)} among {len(sliders)} sliders")
-    a = attrs(named[0])
-    return named[0], force[0], float(a.get("start", 0.05)), float(a.get("end", 30.0))
-
-
-# ---------------------------------------------------------------- one session
-
-
-@dataclass
-class Stats:
-    latencies: list[float] = field(default_factory=list)  # seconds
-    sent: int = 0
-    late: int = 0
-    messages: int = 0  # PATCH-DOC messages received while a change was in flight
-    errors: dict[str, int] = field(default_factory=dict)
-
-    def error(self, kind: str) -> None:
-        self.errors[kind] = self.errors.get(kind, 0) + 1
-
-
-class Session:
-    """One simulated browser tab."""
-
-    def __init__(self, url: str, http: AsyncHTTPClient, timeout: float, slider: str | None):
-        self.url, self.http, self.timeout, self.slider_name = url, http, timeout, slider
-        self.cookies: dict[str, str] = {}
-        self.conn = None
-        self.pending: tuple[str, float] | None = None  # (msgid, sent at)
-        self.stats: Stats | None = None  # where results go (None: not recorded)
-        self.alive = False
-        self._n = 0
-        self._reader: asyncio.Task | None = None
-        #: messages received by type (after `open`)
-        self.received: dict[str, int] = {}
-        #: the PATCH-DOC contents received, while a list (None: not kept)
-        self.patches: list[str] | None = None
-
-    async def open(self, targets: bool = True) -> None:
-        """Load the page as a browser does: its HTML, then `load`."""
-        r = await self.http.fetch(self.url, request_timeout=60, follow_redirects=True,
-                                  raise_error=False)
-        if r.code == 429:  # (past the address's page loads: `app.page.gate`)
-            raise LookupError(f"no explorer: page load refused (HTTP 429, {r.effective_url})")
-        if r.code != 200:
-            raise ConnectionError(f"page load answered HTTP {r.code}")
-        for value in r.headers.get_list("Set-Cookie"):
-            for k, morsel in SimpleCookie(value).items():
-                self.cookies[k] = morsel.value
-        m = TOKEN.search(r.body.decode())
-        if not m:
-            raise LookupError("no session token in the page")
-        await self.load(m.group(1), targets)
-
-    async def load(self, token: str, targets: bool = True) -> None:
-        """Do what BokehJS does with the page's session `token`: pull the document (the
-        page's shell, a column), send ``document_ready`` once it is shown (Panel then
-        runs the session's on-load callbacks, which build the explorer into the shell:
-        `app.page.guard.serve_page`), and wait for what fills the shell.  With
-        `targets`, find the ψ slider and the plots' source in it: LookupError if they
-        are not there (naming the server's refusal or failure note if that came)."""
-        content = await self.pull(token)
-        pulled = json.loads(content)
-        shells = [r["id"] for r in pulled["doc"]["roots"] if r.get("name", "").endswith("Column")]
-        await self._send("PATCH-DOC", {"events": [DOCUMENT_READY]})
-        self.doc = {"pulled": pulled, "filled": []}
-        try:  # a server that builds the explorer for the page's HTML (before 54858cc)
-            find_targets(pulled, self.slider_name)
-            shells = []
-        except LookupError:
-            pass
-        while shells:
-            header, content = await asyncio.wait_for(self._read(), 120)
-            if header.get("msgtype") != "PATCH-DOC":
-                continue
-            patch = json.loads(content)
-            self.doc["filled"].append(patch)
-            if any(e.get("attr") == "children" and e.get("model", {}).get("id") in shells
-                   for e in patch.get("events", [])):
-                break
-        if targets:
-            try:
-                self.slider, self.force, self.start, self.end = find_targets(
-                    self.doc, self.slider_name)
-            except LookupError as err:
-                text = json.dumps(self.doc["filled"])
-                notes = [n for n in (REFUSED, FAILED) if n in text]
-                raise LookupError(f"no explorer: {notes[0] if notes else err}") from None
-            self.force_ref = f'"model":{{"id":"{self.force}"}}'
-        self.value = None
-        self.alive = True
-        self._reader = asyncio.create_task(self._read_loop())
-
-    async def connect(self, token: str) -> None:
-        """Open the websocket of the session `token` names and wait for the server's ACK
-        (ConnectionError if the server closes it instead)."""
-        parts = urlsplit(self.url)
-        headers = {"Origin": f"{parts.scheme}://{parts.netloc}",
-                   "Sec-WebSocket-Protocol": f"bokeh, {token}"}
-        if self.cookies:
-            headers["Cookie"] = "; ".join(f"{k}={v}" for k, v in self.cookies.items())
-        ws = "wss" if parts.scheme == "https" else "ws"
-        req = HTTPRequest(f"{ws}://{parts.netloc}{parts.path.rstrip('/')}/ws", headers=headers,
-                          request_timeout=60, connect_timeout=30)
-        self.conn = await websocket_connect(req, max_message_size=64 << 20)
-        header, _ = await asyncio.wait_for(self._read(), 60)
-        if header.get("msgtype") != "ACK":
-            raise ConnectionError(f"expected ACK, got {header.get('msgtype')}")
-
-    async def pull(self, token: str) -> str:
-        """Open the websocket of the session `token` names (from the page, or made up: the
-        server then builds the session for the websocket alone) and pull its document:
-        the PULL-DOC-REPLY's content."""
-        await self.connect(token)
-        await self._send("PULL-DOC-REQ", {})
-        for _ in range(100):  # the server may send patches (e.g. the URL) before the reply
-            header, content = await asyncio.wait_for(self._read(), 60)
-            if header.get("msgtype") == "PULL-DOC-REPLY":
-                return content
-        raise ConnectionError("no PULL-DOC-REPLY")
-
-    async def _read(self) -> tuple[dict, str]:
-        """One whole message: (header, content text); buffers are read and dropped."""
-        frames = []
-        for _ in range(3):
-            f = await self.conn.read_message()
-            if f is None:
-                raise ConnectionError("websocket closed")
-            frames.append(f)
-        header = json.loads(frames[0])
-        for _ in range(2 * int(header.get("num_buffers", 0))):
-            if await self.conn.read_message() is None:
-                raise ConnectionError("websocket closed")
-        return header, frames[2]
-
-    async def _send(self, msgtype: str, content: dict) -> str:
-        self._n += 1
-        msgid = f"lt{self._n}"
-        for frame in ({"msgid": msgid, "msgtype": msgtype}, {}, content):
-            await self.conn.write_message(json.dumps(frame))
-        return msgid
-
-    async def _read_loop(self) -> None:
-        try:
-            while True:
-                header, content = await self._read()
-                kind = header.get("msgtype")
-                self.received[kind] = self.received.get(kind, 0) + 1
-                if kind == "PATCH-DOC" and self.patches is not None:
-                    self.patches.append(content)
-                if kind == "PATCH-DOC" and self.pending and self.stats is not None:
-                    self.stats.messages += 1
-                if kind == "PATCH-DOC" and self.pending and self.force_ref in content:
-                    if self.stats is not None:
-                        self.stats.latencies.append(time.perf_counter() - self.pending[1])
-                    self.pending = None
-                elif kind == "ERROR":
-                    if self.stats is not None:
-                        self.stats.error("server ERROR reply")
-                    if self.pending and header.get("reqid") == self.pending[0]:
-                        self.pending = None
-        except (ConnectionError, WebSocketClosedError, asyncio.CancelledError):
-            pass
-        except Exception:  # a malformed message: this session is lost
-            pass
-        finally:
-            self.alive = False
-
-    async def move(self) -> None:
-        """One tick: send a new ψ unless the previous one is still unanswered."""
-        if not self.alive:
-            if self.stats is not None:
-                self.stats.error("connection lost")
-            return
-        now = time.perf_counter()
-        if self.pending:
-            if now - self.pending[1] < self.timeout:
-                if self.stats is not None:
-                    self.stats.late += 1
-                return
-            if self.stats is not None:
-                self.stats.error(f"no update within {self.timeout:g} s")
-            self.pending = None
-        lo, hi = max(self.start, 0.2), min(self.end, 20.0)
-        v = round(random.uniform(lo, hi), 6)
-        while v == self.value:
-            v = round(random.uniform(lo, hi), 6)
-        self.value = v
-        event = {"kind": "ModelChanged", "model": {"id": self.slider}, "attr": "value", "new": v}
-        try:
-            msgid = f"lt{self._n + 1}"
-            self.pending = (msgid, time.perf_counter())
-            await self._send("PATCH-DOC", {"events": [event]})
-            if self.stats is not None:
-                self.stats.sent += 1
-        except WebSocketClosedError:
-            self.pending = None
-            self.alive = False
-            if self.stats is not None:
-                self.stats.error("connection lost")
-
-    def close(self) -> None:
-        if self._reader:
-            self._reader.cancel()
-        if self.conn is not None:
-            self.conn.close()
-
-
-# ---------------------------------------------------------------- server metrics
-
-
-def process_tree(pids: list[int]):
-    """psutil processes of `pids` and all their descendants (e.g. --num-procs children)."""
-    import psutil
-
-    procs = {}
-    for pid in pids:
-        try:
-            p = psutil.Process(pid)
-        except psutil.NoSuchProcess:
-            continue
-        for q in [p, *p.children(recursive=True)]:
-            procs[q.pid] = q
-    return list(procs.values())
-
-
-def usage(pids: list[int]) -> tuple[float, dict[int, float]]:
-    """(RSS in MiB summed, {pid: CPU seconds user+system}) over the processes' trees."""
-    import psutil
-
-    rss, cpu = 0.0, {}
-    for p in process_tree(pids):
-        try:
-            rss += p.memory_info().rss / 2**20
-            t = p.cpu_times()
-            cpu[p.pid] = t.user + t.system
-        except psutil.NoSuchProcess:
-            pass
-    return rss, cpu
-
+from benchmarks.app import abuse, load_figures
+from benchmarks.app.client import Session, Stats
+from benchmarks.app.common import (
+    AUDIENCE,
+    loopback_only,
+    pct,
+    serve,
+    stop,
+    usage,
+    yardstick_us,
+)
 
 # ---------------------------------------------------------------- a run
-
-
-def pct(values: list[float], q: float) -> float:
-    if not values:
-        return float("nan")
-    if len(values) == 1:
-        return values[0]
-    return statistics.quantiles(values, n=100, method="inclusive")[round(q) - 1]
 
 
 async def run_levels(url: str, levels: list[int], duration: float, warmup: float,
@@ -522,7 +175,7 @@ async def run_levels(url: str, levels: list[int], duration: float, warmup: float
                 "cpu_spread": load_figures.cpu_spread(cpu0, cpu1, wall, serving),
                 "sessions_per_process": placed,
                 "load_average": load,
-                "yardstick_us": round(load_figures.yardstick_us(), 1),
+                "yardstick_us": round(yardstick_us(), 1),
             }
             row.update(load_figures.per_move(sum(cpu1.values()) - sum(cpu0.values()),
                                              len(lat), row["yardstick_us"]) if pids else {})
@@ -535,53 +188,7 @@ async def run_levels(url: str, levels: list[int], duration: float, warmup: float
     return results
 
 
-# ---------------------------------------------------------------- servers to test
-
-
-#: The ``--class-size`` of a server started to measure capacity, memory or page loads:
-#: every simulated visitor comes from 127.0.0.1, one address, whose page loads and
-#: builds the server would otherwise limit as a class's (`app.page.bucket.CLASS_SIZE`).
-#: The abuse mode keeps the default: those limits are what it tests.
-AUDIENCE = 100_000
-
-
-def serve(procs: int, log: Path | None = None,
-          class_size: int | None = None) -> tuple[subprocess.Popen, str]:
-    """Start `python -m app.serve --num-procs procs` on a free loopback port (its output
-    to the file `log`, if given; with `--class-size class_size`, if given)."""
-    port = free_port()
-    out = open(log, "wb") if log else subprocess.DEVNULL
-    sized = ["--class-size", str(class_size)] if class_size else []
-    try:
-        proc = subprocess.Popen(
-            [sys.executable, "-m", "app.serve", "--port", str(port), "--num-procs", str(procs),
-             *sized],
-            cwd=ROOT, stdout=out, stderr=subprocess.STDOUT, start_new_session=True)
-    finally:
-        if log:
-            out.close()
-    wait_http(f"http://127.0.0.1:{port}/liveness")
-    return proc, f"http://127.0.0.1:{port}/main"
-
-
-def stop(proc: subprocess.Popen) -> None:
-    if proc.poll() is None:
-        os.killpg(proc.pid, signal.SIGTERM)
-        try:
-            proc.wait(15)
-        except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)
-            proc.wait(5)
-
-
-def loopback_only(url: str) -> None:
-    host = urlsplit(url).hostname or ""
-    try:
-        ok = host == "localhost" or ipaddress.ip_address(host).is_loopback
-    except ValueError:
-        ok = False
-    if not ok:
-        raise SystemExit(f"refusing to load {host!r}: this test targets loopback addresses only")
+# ---------------------------------------------------------------- the report
 
 
 def table(results: list[dict]) -> str:
@@ -608,8 +215,6 @@ def table(results: list[dict]) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    import abuse  # (benchmarks/app/abuse.py: the --abuse mode, which imports this module)
-
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     where = p.add_mutually_exclusive_group()
     where.add_argument("--url", help="the app's page on a running server or balancer "
@@ -668,8 +273,7 @@ def main(argv: list[str] | None = None) -> int:
         pids = [started.pid]
         setup = f"python -m app.serve --num-procs {args.serve}{sized}"
     elif args.replicas is not None:
-        sys.path.insert(0, str(ROOT / "docker"))
-        import replicas  # docker/replicas.py
+        from docker import replicas  # (docker/replicas.py)
 
         stack = replicas.Stack(n=args.replicas, procs=args.procs,
                                class_size=class_size).start()

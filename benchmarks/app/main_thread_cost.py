@@ -7,7 +7,7 @@ S seconds of animation, per move and per distinct frame painted.  With `--revs A
 each revision is served from a worktree the caller made (`--trees`), the arms
 alternating run by run.
 
-    .venv/bin/python benchmarks/app/main_thread_cost.py --trees /tmp/a /tmp/b [--runs 2]
+    .venv/bin/python -m benchmarks.app.main_thread_cost --trees /tmp/a /tmp/b [--runs 2]
 """
 
 from __future__ import annotations
@@ -16,14 +16,10 @@ import argparse
 import contextlib
 import re
 import statistics
-import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT), str(ROOT / "tests" / "app"), str(ROOT / "benchmarks" / "app")]
-
-import app_latency  # noqa: E402
-from explorer_browser import (  # noqa: E402
+from benchmarks.app import app_latency
+from benchmarks.app.common import (
     CHROMIUM_ARGS,
     chromium_path,
     explorer_server,

@@ -2,7 +2,7 @@
 
 Serves the working tree (or, with ``--revs A B``, the git revisions A and B, each a
 worktree in a temporary directory) as one process each, opens one session on each
-(the load test's simulated browser tab, `load_test.Session`) and moves its psi slider
+(the load test's simulated browser tab, `benchmarks.app.client.Session`) and moves its psi slider
 ``--moves`` times, one move every ``--interval`` s (so that a page's debounced writes,
 such as a URL written 0.4 s after a burst, land between moves as they do for a
 visitor), alternating between the arms move by move: both see the same machine load.
@@ -12,15 +12,15 @@ its idle CPU over as long, measured before over ``--idle`` s: the kernel counts 
 in ticks of 10 ms, one tick in a 5 s window is 2 ms per s, 1.6 ms per move over a run of
 150 moves; the CPU without that correction is reported too), as a multiple of one
 closed-form contact (``core.numerics.metrics.closed_form_time(Contact, 0.4, pi/6)``, the
-yardstick of benchmarks/app/app_latency.py and page_load.py, measured before and after
+yardstick of `benchmarks.app.common.yardstick_us`, measured before and after
 the run); the websocket messages (PATCH-DOC) the client got per move and their bytes; the
 median time from sending a move to the traction data's arrival.  With ``--rounds N`` the
 run is made N times, each with fresh server processes (one process's speed differs from
 another's by a few per cent), and the median of the N paired ratios is reported.
 
-    .venv/bin/python benchmarks/app/move_cost.py
-    .venv/bin/python benchmarks/app/move_cost.py --revs 1c3d2f1 HEAD --moves 150
-    .venv/bin/python benchmarks/app/move_cost.py --revs 1c3d2f1 HEAD --moves 100 --rounds 3
+    .venv/bin/python -m benchmarks.app.move_cost
+    .venv/bin/python -m benchmarks.app.move_cost --revs 1c3d2f1 HEAD --moves 150
+    .venv/bin/python -m benchmarks.app.move_cost --revs 1c3d2f1 HEAD --moves 100 --rounds 3
 
 Loopback only; every request has a timeout.
 """
@@ -32,37 +32,13 @@ import asyncio
 import contextlib
 import json
 import statistics
-import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT), str(ROOT / "benchmarks" / "app"), str(ROOT / "tests" / "app")]
+from tornado.httpclient import AsyncHTTPClient
 
-from app_latency import worktree  # noqa: E402
-from explorer_browser import explorer_server  # noqa: E402
-from load_test import Session, Stats  # noqa: E402
-from soak import yardstick  # noqa: E402
-from tornado.httpclient import AsyncHTTPClient  # noqa: E402
-
-
-def server_pid(url: str) -> int:
-    """The pid of the process listening on `url`'s port."""
-    import psutil
-
-    port = int(url.split(":")[2].split("/")[0])
-    for c in psutil.net_connections("tcp"):
-        if c.laddr and c.laddr.port == port and c.status == "LISTEN" and c.pid:
-            return c.pid
-    raise LookupError(f"no process listens on port {port}")
-
-
-def cpu_s(pid: int) -> float:
-    """CPU seconds (user + system) of process `pid` so far."""
-    import psutil
-
-    t = psutil.Process(pid).cpu_times()
-    return t.user + t.system
+from benchmarks.app.client import Session, Stats
+from benchmarks.app.common import cpu_s, explorer_server, server_pid, worktree, yardstick_us
 
 
 class Arm:
@@ -193,7 +169,7 @@ def main() -> int:
                          "varies by a few per cent); with two arms the ratios' median too")
     ap.add_argument("--json", type=Path, help="also write the figures here")
     args = ap.parse_args()
-    before = yardstick()
+    before = yardstick_us()
     out = {"yardstick_us": [round(before, 2)], "moves": args.moves, "rounds": []}
     with contextlib.ExitStack() as trees:
         roots = ({rev: trees.enter_context(worktree(rev)) for rev in args.revs} if args.revs
@@ -203,7 +179,7 @@ def main() -> int:
                 arms = [Arm(name, servers.enter_context(explorer_server(root, timeout=900)))
                         for name, root in roots.items()]
                 asyncio.run(run(arms, args.moves, args.interval, args.warmup, args.idle))
-            after = yardstick()
+            after = yardstick_us()
             print(f"{'' if args.rounds == 1 else f'round {k + 1}: '}{args.moves} psi moves per "
                   f"arm, one every {args.interval:g} s, arms alternating; yardstick (one "
                   f"closed-form contact) {before:.1f} us before, {after:.1f} us after")

@@ -1,6 +1,6 @@
 """What a psi move costs the explorer's own code: CPU per move without a server.
 
-`benchmarks/app/move_cost.py` times a served process; this times, in a process of its
+`benchmarks.app.move_cost` times a served process; this times, in a process of its
 own per arm, only what the explorer does for a move: the psi slider set as the
 browser's move sets it (`ExactSlider.value`, inside `panel.io.hold`), the state's
 watchers and the scenes, and Bokeh's `PATCH-DOC` message of the changes with its JSON.
@@ -13,9 +13,9 @@ move comes after such a pause: the processor's caches have moved on).  Reported 
 arm: the median and the lowest CPU ms per move over the rounds, the message's bytes;
 with two arms the median of the paired round ratios.
 
-    .venv/bin/python benchmarks/app/move_work.py
-    .venv/bin/python benchmarks/app/move_work.py --revs b842cbc HEAD --rounds 20
-    .venv/bin/python benchmarks/app/move_work.py --gap 0.3 --moves 30 --rounds 6
+    .venv/bin/python -m benchmarks.app.move_work
+    .venv/bin/python -m benchmarks.app.move_work --revs b842cbc HEAD --rounds 20
+    .venv/bin/python -m benchmarks.app.move_work --gap 0.3 --moves 30 --rounds 6
 """
 
 from __future__ import annotations
@@ -25,16 +25,15 @@ import contextlib
 import statistics
 import subprocess
 import sys
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
+from benchmarks.app.common import ROOT, worktree
 
-#: The arm's process: builds the page of the tree on its path, then answers each line
-#: of its standard input (a round) with "ms-per-move bytes-per-move".
+#: The arm's process, run in the tree it measures (``python -c`` imports from there):
+#: builds the page, then answers each line of its standard input (a round) with
+#: "ms-per-move bytes-per-move".
 WORKER = r"""
 import random, sys, time
-root, moves, gap = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
-sys.path.insert(0, root)
+moves, gap = int(sys.argv[1]), float(sys.argv[2])
 import panel as pn
 from bokeh.document import Document
 from bokeh.document.events import DocumentPatchedEvent
@@ -83,15 +82,12 @@ def main() -> int:
     ap.add_argument("--gap", type=float, default=0.0, help="s of sleep before each move")
     ap.add_argument("--revs", nargs=2, metavar=("A", "B"))
     args = ap.parse_args()
-    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
-    from app_latency import worktree
-
     with contextlib.ExitStack() as stack:
         roots = ({rev: stack.enter_context(worktree(rev)) for rev in args.revs} if args.revs
                  else {"working tree": ROOT})
         procs = {name: subprocess.Popen(
-            [sys.executable, "-c", WORKER, str(root), str(args.moves), str(args.gap)],
-            stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+            [sys.executable, "-c", WORKER, str(args.moves), str(args.gap)],
+            cwd=root, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
             for name, root in roots.items()}
         for p in procs.values():
             for line in p.stdout:

@@ -9,7 +9,7 @@ HTML, answering the websocket's pull, building the explorer into the page once t
 client says the page is shown, and sending it.  Reported: median, min,
 p90 and max in ms, the server process's CPU time per load, and the median as a multiple
 of one closed-form contact (``core.numerics.metrics.closed_form_time(Contact, 0.4,
-pi/6)``, the machine yardstick of benchmarks/app/app_latency.py, measured before and after
+pi/6)``, the machine yardstick `benchmarks.app.common.yardstick_us`, measured before and after
 the run).  Target: median <= 0.5 s.
 
 ``--profile FILE`` then records the server with py-spy (``.venv/bin/py-spy``) during
@@ -17,9 +17,9 @@ another ``--loads`` page loads (collapsed stacks in FILE) and prints where the t
 the functions of app/, Panel, Bokeh and param holding the most samples (inclusive) and
 the most samples on their own (self).  The timing run is not profiled.
 
-    .venv/bin/python benchmarks/app/page_load.py
-    .venv/bin/python benchmarks/app/page_load.py --loads 20 --profile /tmp/page.txt --json out.json
-    .venv/bin/python benchmarks/app/page_load.py --revs 6269e5a HEAD --loads 15
+    .venv/bin/python -m benchmarks.app.page_load
+    .venv/bin/python -m benchmarks.app.page_load --loads 20 --profile /tmp/page.txt --json out.json
+    .venv/bin/python -m benchmarks.app.page_load --revs 6269e5a HEAD --loads 15
 
 ``--revs A B`` serves two git revisions side by side and alternates their loads (the
 CPU of each counted over the load and the 0.5 s after it, where a session's first
@@ -53,11 +53,18 @@ import time
 from collections import Counter
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT), str(ROOT / "benchmarks" / "app")]
-
-from load_test import AUDIENCE, loopback_only, serve, stop  # noqa: E402
-from soak import yardstick  # noqa: E402
+from benchmarks.app.client import Session
+from benchmarks.app.common import (
+    AUDIENCE,
+    cpu_s,
+    explorer_server,
+    loopback_only,
+    serve,
+    server_pid,
+    stop,
+    worktree,
+    yardstick_us,
+)
 
 #: Target: median server time of a page load, in seconds.
 TARGET_S = 0.5
@@ -71,10 +78,9 @@ LINE = re.compile(r":\d+\)$")
 
 def load(url: str) -> float:
     """Seconds from sending GET `url` to having the explorer, loaded as a browser loads
-    it (`load_test.Session.open`: the page's HTML, its websocket, the document (the
+    it (`benchmarks.app.client.Session.open`: the page's HTML, its websocket, the document (the
     page's shell), ``document_ready``, and the explorer built into the page, received).
     The browser's own work (scripts, rendering) is not in it."""
-    from load_test import Session
     from tornado.httpclient import AsyncHTTPClient
 
     async def go() -> float:
@@ -87,14 +93,6 @@ def load(url: str) -> float:
             session.close()
 
     return asyncio.run(go())
-
-
-def cpu_s(pid: int) -> float:
-    """CPU seconds (user + system) of process `pid` so far."""
-    import psutil
-
-    t = psutil.Process(pid).cpu_times()
-    return t.user + t.system
 
 
 def timed_loads(url: str, pid: int, loads: int) -> dict:
@@ -119,10 +117,6 @@ def paired(revs: list[str], loads: int, idle: float) -> dict:
     """Revisions `revs` served side by side (a worktree each), their loads alternated:
     per revision, the loads' `summary`, as `timed_loads`."""
     import contextlib
-
-    from app_latency import worktree
-    from explorer_browser import explorer_server
-    from move_cost import server_pid
 
     with contextlib.ExitStack() as stack:
         urls = {rev: stack.enter_context(explorer_server(stack.enter_context(worktree(rev)),
@@ -294,7 +288,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.loads < 1:
         p.error("--loads must be >= 1")
 
-    res: dict = {"yardstick_before_us": round(yardstick(), 1)}
+    res: dict = {"yardstick_before_us": round(yardstick_us(), 1)}
     validate = "true" if args.validate_doc else "false"
     os.environ["BOKEH_VALIDATE_DOC"] = validate  # (the server started below inherits it)
     proc, url = serve(1, class_size=AUDIENCE)
@@ -310,7 +304,7 @@ def main(argv: list[str] | None = None) -> int:
             res["profile"] = profile(url, proc.pid, args.loads, args.profile)
     finally:
         stop(proc)
-    res["yardstick_after_us"] = round(yardstick(), 1)
+    res["yardstick_after_us"] = round(yardstick_us(), 1)
     med_us = 1e3 * res["median_ms"]
     res["median_in_contacts"] = [round(med_us / res["yardstick_before_us"]),
                                  round(med_us / res["yardstick_after_us"])]

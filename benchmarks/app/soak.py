@@ -15,7 +15,7 @@ resident memory (RSS) of that process:
     session against the target (within 0.5 MB per session of the baseline).
 (b) **one long session**: ``--changes`` ψ moves in ONE session, each sent when the
     previous one's plot update has arrived, speaking Bokeh's websocket protocol with
-    ``benchmarks/app/load_test.py``'s ``Session`` (imported, not copied).  The server's RSS
+    ``benchmarks.app.client.Session``.  The server's RSS
     is sampled every ``--every`` changes; a least-squares line through the samples gives
     the trend per 1000 changes with its 95 % confidence interval, over the whole run and
     over its second half (what remains once caches are warm).  The trend counts as beyond
@@ -28,10 +28,10 @@ takes 60-90 ms from change to update on the shared 2-core machine, so the defaul
 counts take about 4-5 minutes for (a) and 12-15 minutes for (b); ``--changes 2000``
 gives a 3-minute look at (b).
 
-    .venv/bin/python benchmarks/app/soak.py                       # both parts, default counts
-    .venv/bin/python benchmarks/app/soak.py --loads 50 --changes 2000 --json soak.json
-    .venv/bin/python benchmarks/app/soak.py --skip-loads          # only the long session
-    .venv/bin/python benchmarks/app/soak.py --skip-changes --malloc-trim   # see below
+    .venv/bin/python -m benchmarks.app.soak                      # both parts, default counts
+    .venv/bin/python -m benchmarks.app.soak --loads 50 --changes 2000 --json soak.json
+    .venv/bin/python -m benchmarks.app.soak --skip-loads         # only the long session
+    .venv/bin/python -m benchmarks.app.soak --skip-changes --malloc-trim   # see below
 
 ``--malloc-trim`` starts the server with glibc's ``malloc_trim(0)`` run every 5 s on
 its event loop (a ``python -c`` wrapper around ``app.serve.main``): RSS that falls back
@@ -53,22 +53,20 @@ import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT), str(ROOT / "benchmarks" / "app")]
+from tornado.httpclient import AsyncHTTPClient
 
-from load_test import (  # noqa: E402
+from app.serve import SESSION
+from benchmarks.app.client import Session, Stats
+from benchmarks.app.common import (
     AUDIENCE,
-    Session,
-    Stats,
+    ROOT,
     free_port,
     loopback_only,
     serve,
     stop,
-    wait_http,
+    wait_for_http,
+    yardstick_us,
 )
-from tornado.httpclient import AsyncHTTPClient  # noqa: E402
-
-from app.serve import SESSION  # noqa: E402
 
 #: ``python -c`` program for --malloc-trim: app.serve's main, plus glibc's malloc_trim(0)
 #: every 5 s on the server's event loop (returns the allocator's free pages to the system).
@@ -85,15 +83,6 @@ sys.exit(main())
 TARGET_MB_PER_SESSION = 0.5
 
 
-def yardstick() -> float:
-    """Microseconds for one closed-form contact (psi = 0.4, tau0 = pi/6), best of 5:
-    the machine's speed at the time (as in benchmarks/app/app_latency.py)."""
-    from core import Contact
-    from core.numerics.metrics import closed_form_time
-
-    return 1e6 * min(closed_form_time(Contact, 0.4, 0.5235987755982988) for _ in range(5))
-
-
 def rss_mib(pid: int) -> float:
     """Resident memory of process `pid` in MiB."""
     import psutil
@@ -102,14 +91,14 @@ def rss_mib(pid: int) -> float:
 
 
 def serve_trimmed() -> tuple[subprocess.Popen, str]:
-    """Like load_test's ``serve(1)``, with glibc's malloc_trim(0) run every 5 s in the
+    """Like `benchmarks.app.common.serve` (1), with glibc's malloc_trim(0) run every 5 s in the
     server (a diagnosis: memory the allocator holds free vs memory still in use)."""
     port = free_port()
     proc = subprocess.Popen([sys.executable, "-c", TRIMMED_SERVER, "--port", str(port),
                              "--class-size", str(AUDIENCE)],
                             cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True)
-    wait_http(f"http://127.0.0.1:{port}/liveness")
+    wait_for_http(f"http://127.0.0.1:{port}/liveness")
     return proc, f"http://127.0.0.1:{port}/main"
 
 
@@ -367,7 +356,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.loads < 1 or args.changes < 1 or args.every < 1:
         p.error("--loads, --changes and --every must be >= 1")
 
-    res: dict = {"yardstick_before_us": round(yardstick(), 1)}
+    res: dict = {"yardstick_before_us": round(yardstick_us(), 1)}
     proc, url = serve_trimmed() if args.malloc_trim else serve(1, class_size=AUDIENCE)
     loopback_only(url)
     res["setup"] = (f"python -m app.serve --num-procs 1 ({url})"
@@ -378,7 +367,7 @@ def main(argv: list[str] | None = None) -> int:
         res.update(asyncio.run(run(args, url, proc.pid)))
     finally:
         stop(proc)
-    res["yardstick_after_us"] = round(yardstick(), 1)
+    res["yardstick_after_us"] = round(yardstick_us(), 1)
     print(report(res))
     if args.json:
         args.json.write_text(json.dumps(res, indent=2) + "\n")

@@ -5,7 +5,7 @@ contact's grid, and the traction profile), encoded as `app.kit.wire.InlineColumn
 base64 of a gzip stream, at gzip levels 0 (stored), 1, 2 (Bokeh's default) and 6, and
 the stored stream as `app.kit.wire.stored_gzip` writes it (the same bytes as level 0).
 
-    .venv/bin/python benchmarks/app/wire_cost.py
+    .venv/bin/python -m benchmarks.app.wire_cost
 """
 
 from __future__ import annotations
@@ -16,11 +16,8 @@ import math
 import sys
 import time
 from functools import partial
-from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
 from app.contact.traction import TractionScene
 from app.kit.figures import CURVE_POINTS

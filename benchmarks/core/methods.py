@@ -39,7 +39,7 @@ Outputs (benchmarks/results/, or results/quick/ with --quick), data only:
   methods_table.md      per case and per regime: fastest peer reaching each error target
   compile_times.json    cold compile and cached first-call time of each kernel
 
-Usage: .venv/bin/python benchmarks/core/methods.py [--quick] [--replot]
+Usage: .venv/bin/python -m benchmarks.core.methods [--quick] [--replot]
 """
 
 from __future__ import annotations
@@ -55,17 +55,14 @@ from collections.abc import Callable
 from functools import partial
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT), str(Path(__file__).resolve().parent)]
+import mpmath as mp
+import numpy as np
+from numba import njit
+from tqdm import tqdm
 
-import mpmath as mp  # noqa: E402
-import numpy as np  # noqa: E402
-from numba import njit  # noqa: E402
-from results_csv import read_csv, write_csv  # noqa: E402
-from tqdm import tqdm  # noqa: E402
-
-from core import Contact, curve, kernels  # noqa: E402
-from core.numerics import (  # noqa: E402
+from benchmarks.core.results_csv import read_csv, write_csv
+from core import Contact, curve, kernels
+from core.numerics import (
     METHODS,
     MethodResult,
     Params,
@@ -74,7 +71,9 @@ from core.numerics import (  # noqa: E402
     mdr,
     quadrature,
 )
-from core.numerics.metrics import errors  # noqa: E402
+from core.numerics.metrics import errors
+
+ROOT = Path(__file__).resolve().parents[2]
 
 #: Quadrature of core's T: a check of eq 41 (it needs the closed form), not a peer.
 CHECKS = ("quad", "gauss_legendre")

@@ -14,7 +14,7 @@ its ratio to one closed-form contact of core, (a) ``Contact(psi, tau0).impulse_r
 (eq 41, one number) and (b) ``Contact(psi, tau0).tangential_force`` on its 400-point
 ``tau_grid`` (one drawn T(tau) curve), for a few contacts.
 
-Run: ``.venv/bin/python benchmarks/core/motor.py [--repeat 200] [--only stall|moving]``.
+Run: ``.venv/bin/python -m benchmarks.core.motor [--repeat 200] [--only stall|moving]``.
 """
 
 from __future__ import annotations

@@ -13,25 +13,23 @@ Output (benchmarks/results/, or results/quick/ with --quick), data only:
   stability_map.csv    one row per method and cell; its heat maps (stability_map.html,
                        one per method, with a selector) are the app's: ``make bench-charts``
 
-Usage: .venv/bin/python benchmarks/core/stability_map.py [--quick]
+Usage: .venv/bin/python -m benchmarks.core.stability_map [--quick]
 """
 
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 
+import numpy as np
+from tqdm import tqdm
+
+from benchmarks.core.results_csv import write_csv
+from core import Contact
+from core.numerics import METHODS, solve
+from core.numerics.metrics import errors
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT), str(Path(__file__).resolve().parent)]
-
-import numpy as np  # noqa: E402
-from results_csv import write_csv  # noqa: E402
-from tqdm import tqdm  # noqa: E402
-
-from core import Contact  # noqa: E402
-from core.numerics import METHODS, solve  # noqa: E402
-from core.numerics.metrics import errors  # noqa: E402
 
 BUDGET: dict[str, int] = {
     "textbook": 200,

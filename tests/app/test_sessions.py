@@ -8,16 +8,14 @@ from __future__ import annotations
 import asyncio
 import gc
 import json
-import logging
-import sys
 import threading
 import time
 import tracemalloc
 import urllib.request
-from pathlib import Path
 
 import pytest
 from bokeh.document import Document
+from bokeh_client import Tab
 from explorer_browser import free_port
 from panel.io.server import get_server
 from tornado.httpclient import AsyncHTTPClient
@@ -27,9 +25,6 @@ from app.contact.state import ExplorerState
 from app.methods import MethodsScene
 from app.page.explorer import Explorer
 from app.serve import applications, parse_args, server_options
-
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "benchmarks" / "app"))  # (its load_test.Session: a browser's load)
 
 LIFETIME_MS = 1500  # unused sessions are discarded after this (app/serve.py: 20 s)
 SECRET_KEY = b"a-test-key-of-at-least-thirty-two-characters"  # signs the session ids
@@ -89,19 +84,16 @@ def _load(url: str) -> None:
 
 
 def visit(url: str, targets: bool = True) -> None:
-    """Load the page at `url` as a browser does (benchmarks/app/load_test.py's client:
-    the HTML, the websocket, the document, ``document_ready``, what is built into the
-    page) and close it.  With `targets`, LookupError unless the explorer's ψ slider and
-    plots came (naming the server's refusal or failure note if that came instead)."""
-    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
-    from load_test import Session
-
+    """Load the page at `url` as a browser does (`bokeh_client.Tab`: the HTML, the
+    websocket, the document, ``document_ready``, what is built into the page) and close
+    it.  With `targets`, LookupError unless the explorer's ψ slider and plots came
+    (naming the server's refusal or failure note if that came instead)."""
     async def go() -> None:
-        session = Session(url, AsyncHTTPClient(), 10.0, None)
+        tab = Tab(url, AsyncHTTPClient())
         try:
-            await session.open(targets)
+            await tab.open(targets)
         finally:
-            session.close()
+            tab.close()
 
     asyncio.run(go())
 
@@ -111,6 +103,12 @@ def new_session(server, before: set[str]):
     (session,) = [s for s in server.get_sessions("/main") if s.id not in before]
     return session
 
+
+#: The psi moves whose memory is measured (after 200 to warm up), each answered before
+#: the next (~0.1 s each with tracemalloc on).
+MOVES = 300
+#: The move made before each snapshot.
+LAST_PSI = 2.0
 
 KINDS = (Explorer, ExplorerState, MethodsScene, Document)
 
@@ -134,71 +132,56 @@ def test_sessions_leave_nothing_behind(served) -> None:
     assert before[Explorer] == 0  # the warm-up session's explorer is gone too
 
 
+@pytest.mark.slow
 def test_slider_moves_in_one_session_hold_no_more_python_memory(served) -> None:
-    """A thousand psi moves over Bokeh's protocol (benchmarks/app/load_test.py's client) leave
-    the Python heap where it was: tracemalloc sees no growth beyond a few arrays' worth
-    (what the server's RSS adds over a long soak is the allocator's, see docs/deploy.md)."""
+    """`MOVES` psi moves over Bokeh's protocol (`bokeh_client.Tab`, each answered by
+    the plots' new data before the next) leave the Python heap where it was: tracemalloc
+    sees no growth beyond a few arrays' worth (what the server's RSS adds over a long
+    soak is the allocator's, see docs/deploy.md)."""
     url, _ = served
-    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
-    from load_test import Session
 
     async def moves() -> int:
-        session = Session(url, AsyncHTTPClient(), 10.0, None)
-        await session.open()
+        tab = Tab(url, AsyncHTTPClient())
+        await tab.open()
+
+        async def snapshot() -> tracemalloc.Snapshot:
+            # the same last move before each (what a move leaves in flight is its size)
+            await tab.moved(LAST_PSI)
+            await tab.quiet(0.3)
+            gc.collect()
+            return tracemalloc.take_snapshot()
+
         try:
             for _ in range(200):  # warm: caches, the first arrays of each size
-                await session.move()
-            gc.collect()
+                await tab.moved()
             tracemalloc.start()
-            before = tracemalloc.take_snapshot()
-            for _ in range(1000):
-                await session.move()
-            gc.collect()
-            after = tracemalloc.take_snapshot()
+            before = await snapshot()
+            for _ in range(MOVES):
+                await tab.moved()
+            after = await snapshot()
             tracemalloc.stop()
         finally:
-            session.close()
+            tab.close()
         return sum(s.size_diff for s in after.compare_to(before, "filename"))
 
     grown = asyncio.run(moves())
-    assert grown < 100_000, f"1000 moves left {grown} bytes of Python objects behind"
+    assert grown < 100_000, f"{MOVES} moves left {grown} bytes of Python objects behind"
 
 
 def _one_move(url: str, listen: float = 0.0) -> tuple[list[str], list[str], float]:
-    """One psi move from a loaded page (benchmarks/app/load_test.py's client, which sends
-    `document_ready` as BokehJS does): the PATCH-DOCs up to the one with the plots' new
-    data, those that follow within `listen` s, and the psi sent."""
-    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
-    from load_test import Session
-
+    """One psi move from a loaded page (`bokeh_client.Tab`, which sends `document_ready`
+    as BokehJS does): the PATCH-DOCs up to the one with the plots' new data, those that
+    follow within `listen` s, and the psi sent."""
     async def move() -> tuple[list[str], list[str], float]:
-        session = Session(url, AsyncHTTPClient(), 10.0, None)
-        await session.open()
-        session._reader.cancel()  # read the replies here instead
+        tab = Tab(url, AsyncHTTPClient())
+        await tab.open()
         try:
-            while True:  # what the page's load sends, until a quiet 0.5 s
-                try:
-                    await asyncio.wait_for(session._read(), 0.5)
-                except TimeoutError:
-                    break
-            await session.move()
-            patches = []
-            while not any(session.force_ref in p for p in patches):
-                header, content = await asyncio.wait_for(session._read(), 10)
-                if header["msgtype"] == "PATCH-DOC":
-                    patches.append(content)
-            later = []
-            deadline = time.monotonic() + listen
-            while (left := deadline - time.monotonic()) > 0:
-                try:
-                    header, content = await asyncio.wait_for(session._read(), left)
-                except TimeoutError:
-                    break
-                if header["msgtype"] == "PATCH-DOC":
-                    later.append(content)
-            return patches, later, session.value
+            await tab.quiet(0.5)  # what the page's load sends, until a quiet 0.5 s
+            patches, psi = await tab.moved()
+            later = await tab.quiet(listen) if listen else []
+            return patches, [c for h, c in later if h["msgtype"] == "PATCH-DOC"], psi
         finally:
-            session.close()
+            tab.close()
 
     return asyncio.run(move())
 
@@ -236,18 +219,16 @@ def test_a_session_built_for_its_websocket_alone_has_the_servers_stylesheets(ser
     Content-Security-Policy (the page showed unstyled, 233 refusals in the console) and
     out of reach offline."""
     url, _ = served
-    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
     from bokeh.util.token import generate_jwt_token, generate_session_id
-    from load_test import Session
 
     async def load() -> str:
-        session = Session(url, AsyncHTTPClient(), 10.0, None)
+        tab = Tab(url, AsyncHTTPClient())
         try:  # a session no page was made for (its id signed with the server's key)
-            await session.load(generate_jwt_token(
+            await tab.load(generate_jwt_token(
                 generate_session_id(SECRET_KEY, signed=True), SECRET_KEY, signed=True))
-            return json.dumps(session.doc)
+            return json.dumps(tab.doc)
         finally:
-            session.close()
+            tab.close()
 
     doc = asyncio.run(load())
     assert "cdn.holoviz.org" not in doc
@@ -263,67 +244,19 @@ def test_a_session_id_the_server_did_not_issue_is_refused(served, signed_with) -
     url, server = served
     from bokeh.util.token import generate_jwt_token, generate_session_id
 
-    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
-    from load_test import Session
-
     signed = signed_with is not None
     token = generate_jwt_token(generate_session_id(signed_with, signed=signed),
                                signed_with, signed=signed)
     before = len(server.get_sessions("/main"))
 
     async def pull() -> str:
-        session = Session(url, AsyncHTTPClient(), 10.0, None)
+        tab = Tab(url, AsyncHTTPClient())
         try:
-            return await session.pull(token)
+            return await tab.pull(token)
         finally:
-            session.close()
+            tab.close()
 
     with pytest.raises(Exception):  # noqa: B017 (closed or refused, as the client sees it)
         asyncio.run(pull())
     assert len(server.get_sessions("/main")) == before
 
-
-def test_whole_document_pulls_past_a_sessions_burst_are_refused(served, caplog) -> None:
-    """A script's PULL-DOC requests (each answered with the whole document, ~100 ms of
-    CPU to serialize) are answered up to the session's burst, the page's own pull
-    included (`app.page.pulls`), and refused past it with Bokeh's error reply; the log
-    gets one line for the burst, not a traceback per refusal."""
-    from app.page.limits import PROTOCOL_LOGGER, quiet_closed_connections
-    from app.page.pulls import BURST
-
-    sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
-    from load_test import Session
-
-    sent = 10
-
-    async def spam() -> list[tuple[str, str]]:
-        session = Session(served[0], AsyncHTTPClient(), 10.0, None)
-        await session.open()  # (the page's own pull)
-        session._reader.cancel()  # read the replies here instead
-        try:
-            for _ in range(sent):
-                await session._send("PULL-DOC-REQ", {})
-            replies = []
-            while len(replies) < sent:
-                header, content = await asyncio.wait_for(session._read(), 30)
-                if header["msgtype"] in ("PULL-DOC-REPLY", "ERROR"):
-                    replies.append((header["msgtype"], content))
-            return replies
-        finally:
-            session.close()
-
-    filters = quiet_closed_connections()
-    try:
-        with caplog.at_level(logging.ERROR, logger=PROTOCOL_LOGGER):
-            replies = asyncio.run(spam())
-    finally:
-        for name, f in filters:
-            logging.getLogger(name).removeFilter(f)
-    kinds = [k for k, _ in replies]
-    answered = int(BURST) - 1
-    assert kinds == ["PULL-DOC-REPLY"] * answered + ["ERROR"] * (sent - answered)
-    assert all(len(c) > 100_000 for k, c in replies if k == "PULL-DOC-REPLY")
-    assert all("PullRefused" in json.loads(c)["text"] for k, c in replies if k == "ERROR")
-    lines = [r for r in caplog.records if r.name == PROTOCOL_LOGGER]
-    assert len(lines) == 1 and lines[0].exc_info is None, [r.getMessage() for r in lines]
-    assert "pulls past their session's limit" in lines[0].getMessage()

@@ -4,13 +4,10 @@ per contact, with the arguments of the single call, and the count follows one ru
 from __future__ import annotations
 
 import math
-import sys
-from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks" / "core"))
-import methods
+from benchmarks.core import methods
 
 RUNS = [("closed_form", 200, None), ("closed_form", 10, None), ("mdr", 12, 8),
         ("annulus", 8, None), ("direnzo", 10, None), ("lammps_mindlin_force", 20, None)]

@@ -2,14 +2,9 @@
 
 from __future__ import annotations
 
-import sys
-from pathlib import Path
-
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "benchmarks" / "app"))
-import load_figures as lf  # noqa: E402
+from benchmarks.app import load_figures as lf
 
 
 def test_cpu_spread_is_the_busiest_process_over_the_mean():
