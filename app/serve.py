@@ -28,8 +28,14 @@ A `panel serve app/main.py` with the settings a deployment needs fixed in one pl
   (`app.page.gate`: past them a client is sent, before any session is made, to a short
   429 page, ``/main/busy``, that opens its link again when it may).
 - **Signed session ids** (``BOKEH_SECRET_KEY``, else a key drawn at start): a websocket
-  or a page request naming a session id this server did not issue is refused, so no
-  client can have documents built without loading a page.
+  or a page request naming a session id this server did not issue is refused (a
+  websocket with 403, before its handshake: `app.page.websocket`), so no client can have
+  documents built without loading a page.
+- **One whole-document pull per websocket** (BokehJS sends one): a connection sending a
+  second ``PULL-DOC-REQ`` is closed (`app.page.websocket.OnePullHandler`).
+- **Logs bounded per client**: refusals are logged as one line per client address per
+  burst, and the access log writes at most a dozen lines per address at once, then one
+  every 20 s, the dropped ones counted (`app.page.limits.quiet_closed_connections`).
 - **Message size cap**: a client's websocket message above 512 KiB closes its
   connection (the explorer's own messages are a few hundred bytes).
 - **No autoload script**: Bokeh's ``/main/autoload.js`` (embedding in other sites'
@@ -239,8 +245,13 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
 
 
 def server_options(args: argparse.Namespace) -> dict:
-    """Keyword arguments of `panel.io.server.get_server` for `args`."""
+    """Keyword arguments of `panel.io.server.get_server` for `args`; the websocket
+    handler of every application set to `app.page.websocket.OnePullHandler`."""
+    from app.page import websocket
     from app.page.gate import BUSY_PATH, BusyPage
+    from app.page.limits import log_request
+
+    websocket.install()
 
     opts = dict(
         port=args.port, address=args.address, num_procs=args.num_procs,
@@ -248,6 +259,7 @@ def server_options(args: argparse.Namespace) -> dict:
         liveness=True, index=None, admin=args.admin,
         use_xheaders=args.behind_proxy,
         transforms=[NoAutoload, SecurityHeaders, GZipContentEncoding],
+        log_function=log_request,  # (Tornado's access log, with each line's client)
         extra_patterns=[(BUSY_PATH, BusyPage, {"prefix": args.prefix})],
         **SESSION,
     )

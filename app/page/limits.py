@@ -1,7 +1,10 @@
 """One log line per burst, not a traceback per message: a websocket closed with messages
-still queued, websockets naming a session id this server did not sign, and whole-document
-pulls past their session's limit (`app.page.pulls`); and a cap on the lines of Tornado's
-access log (`Cap`), which writes one per request, refused or not.
+still queued, websockets naming a session id this server did not sign, whole-document
+pulls past their session's limit (`app.page.pulls`) and websockets closed for a second
+pull (`app.page.websocket`); and bounds on Tornado's access log, which writes a line per
+request (`log_request`): refused requests one line per client per burst (`Burst` with a
+key), a client's other lines a dozen at once, then one every 20 s (`ClientLines`), and
+all lines at most `ACCESS_LINES` a minute (`Cap`).
 
 A client that sends many messages without waiting for the answers (e.g. PULL-DOC
 requests in a loop) and then closes leaves them in the server's read buffer.  Tornado
@@ -92,30 +95,49 @@ def closed_send(record: logging.LogRecord) -> bool:
 class Burst(logging.Filter):
     """Logs the first record that `match`es in each `window` s as one line (`summary`,
     then how many were dropped since the previous such line; no traceback) and drops the
-    others; records that do not match pass unchanged."""
+    others; records that do not match pass unchanged.
+
+    With `key` (a record's client, say), each key has bursts of its own (at most `keys`
+    are kept; the oldest are forgotten), and `summary` may name the record's own message
+    and its key (``{message}``, ``{key}``)."""
 
     def __init__(self, match: Callable[[logging.LogRecord], bool], summary: str,
-                 window: float = 10.0, clock: Callable[[], float] = time.monotonic) -> None:
+                 window: float = 10.0, clock: Callable[[], float] = time.monotonic,
+                 key: Callable[[logging.LogRecord], str] | None = None,
+                 keys: int = 10_000) -> None:
         super().__init__()
         self.match, self.summary, self.window, self._clock = match, summary, window, clock
-        self._started: float | None = None  # when the current burst's line was logged
-        self.dropped = 0  # records dropped since that line
+        self.key, self.keys = key, keys
+        #: per key: when its current burst's line was logged, and the records dropped since
+        self._bursts: dict[str, tuple[float, int]] = {}
         self._lock = threading.Lock()
+
+    @property
+    def dropped(self) -> int:
+        """The records dropped since their burst's line, over every key."""
+        with self._lock:
+            return sum(n for _, n in self._bursts.values())
 
     def filter(self, record: logging.LogRecord) -> bool | logging.LogRecord:
         if not self.match(record):
             return True
+        key = self.key(record) if self.key else ""
         now = self._clock()
         with self._lock:
-            if self._started is not None and now - self._started < self.window:
-                self.dropped += 1
+            started, dropped = self._bursts.get(key, (None, 0))
+            if started is not None and now - started < self.window:
+                self._bursts[key] = (started, dropped + 1)
                 return False
-            self._started, dropped, self.dropped = now, self.dropped, 0
+            self._bursts.pop(key, None)
+            if len(self._bursts) >= self.keys:  # (the oldest burst forgotten)
+                self._bursts.pop(next(iter(self._bursts)))
+            self._bursts[key] = (now, 0)
         more = (f"; {dropped} more like it in the previous {self.window:g} s not logged"
                 if dropped else "")
+        text = self.summary.format(message=record.getMessage(), key=key)
         return logging.makeLogRecord({
-            **record.__dict__, "msg": f"{self.summary} (further ones within "
-                                      f"{self.window:g} s not logged{more})",
+            **record.__dict__, "msg": f"{text} (further ones within {self.window:g} s not "
+                                      f"logged{more})",
             "args": (), "exc_info": None, "exc_text": None, "stack_info": None})
 
 
@@ -158,12 +180,93 @@ class Cap(logging.Filter):
 #: writes at most ~17 lines a second.
 ACCESS_LOGGER, ACCESS_LINES, ACCESS_WINDOW_S = "tornado.access", 1000, 60.0
 
+#: The access log's lines per client address: this many at once, then one every
+#: 1 / rate s (a script in a loop writes at most 13 lines in 20 s; what is dropped is
+#: counted in the client's next line).
+CLIENT_LINES, CLIENT_LINES_RATE = 12.0, 1.0 / 20.0
+
+#: The logger of the explorer's websocket handler (`app.page.websocket`).
+WEBSOCKET_LOGGER = "app.page.websocket"
+
+
+def client_of(record: logging.LogRecord) -> str:
+    """The client address a record names (``client``, as `log_request` and the
+    websocket handler set it), or ""."""
+    return str(getattr(record, "client", ""))
+
+
+def refused(record: logging.LogRecord) -> bool:
+    """Whether `record` is an access-log line of a refused request (``refused``, as
+    `log_request` sets it)."""
+    return bool(getattr(record, "refused", False))
+
+
+def refusal(status: int, path: str) -> bool:
+    """Whether a request of `path` answered `status` was refused: 403 (a websocket from
+    another origin, or naming a session this server did not sign), 429 (the busy page)
+    or a redirect of the explorer's page (to the busy page: `app.page.gate.authorize`;
+    or to a login)."""
+    from app.page.gate import APP_PATH
+
+    return status in (403, 429) or (status == 302 and path.rstrip("/").endswith(APP_PATH))
+
+
+def log_request(handler) -> None:
+    """Tornado's access log line of a finished request (the application's
+    ``log_function``: what Tornado writes, ``STATUS METHOD URI (ADDRESS) TIMEms``, at
+    its levels), with the client's address (``client``) and whether it was refused
+    (``refused``) for the filters of `quiet_closed_connections`."""
+    request = handler.request
+    status = handler.get_status()
+    level = (logging.INFO if status < 400 else logging.WARNING if status < 500
+             else logging.ERROR)
+    logging.getLogger(ACCESS_LOGGER).log(
+        level, "%d %s %s (%s) %.2fms", status, request.method, request.uri, request.remote_ip,
+        1000.0 * request.request_time(),
+        extra={"client": str(request.remote_ip), "refused": refusal(status, request.path)})
+
+
+class ClientLines(logging.Filter):
+    """Passes a client's records while its bucket has lines (`limit`, one per record:
+    `app.page.bucket.AddressLimit`) and drops the others; the next record passed for it
+    says how many were dropped.  Records of no client, and refusals (one line per burst
+    already), pass unchanged."""
+
+    def __init__(self, limit) -> None:
+        super().__init__()
+        self.limit = limit
+        self._dropped: dict[str, int] = {}  # per client, since its last line
+        self._lock = threading.Lock()
+
+    def filter(self, record: logging.LogRecord) -> bool | logging.LogRecord:
+        client = client_of(record)
+        if not client or refused(record):
+            return True
+        with self._lock:
+            if not self.limit.allow(client):
+                self._dropped[client] = self._dropped.get(client, 0) + 1
+                if len(self._dropped) > self.limit.clients:
+                    self._dropped.pop(next(iter(self._dropped)))
+                return False
+            dropped = self._dropped.pop(client, 0)
+        if not dropped:
+            return True
+        return logging.makeLogRecord({
+            **record.__dict__, "msg": f"{record.getMessage()} ({dropped} lines of {client} "
+                                      f"before it not written: more than "
+                                      f"{self.limit.burst:g} at once)", "args": ()})
+
 
 def quiet_closed_connections(window: float = 10.0) -> list[tuple[str, logging.Filter]]:
     """Put a `Burst` filter on each logger that writes lines per message queued on a
     closed websocket, per websocket refused for its token's signature or per refused
-    pull, and a `Cap` of `ACCESS_LINES` per `ACCESS_WINDOW_S` on Tornado's access log;
-    returns the (logger name, filter) pairs (call once, at start)."""
+    pull; on Tornado's access log (`log_request`'s lines) one line per client per burst
+    of refusals, `CLIENT_LINES` lines per client at once (`ClientLines`) and a `Cap` of
+    `ACCESS_LINES` per `ACCESS_WINDOW_S`; one line per client per burst of websockets
+    closed for a second pull (`app.page.websocket`).  Returns the (logger name, filter)
+    pairs (call once, at start)."""
+    from app.page.bucket import AddressLimit
+
     filters = [
         (PROTOCOL_LOGGER, Burst(detached_session, "messages that arrived on a websocket "
                                 "after it closed were dropped (Bokeh's AssertionError)",
@@ -180,7 +283,11 @@ def quiet_closed_connections(window: float = 10.0) -> list[tuple[str, logging.Fi
         (TORNADO_LOGGER, Burst(refused_token, "websockets refused: session token not "
                                "signed with this server's key (Bokeh's ProtocolError)",
                                window)),
+        (ACCESS_LOGGER, Burst(refused, "{message}, refused (per client)", window,
+                              key=client_of)),
+        (ACCESS_LOGGER, ClientLines(AddressLimit(CLIENT_LINES, CLIENT_LINES_RATE))),
         (ACCESS_LOGGER, Cap(ACCESS_LINES, ACCESS_WINDOW_S)),
+        (WEBSOCKET_LOGGER, Burst(lambda r: True, "{message}", window, key=client_of)),
     ]
     for name, f in filters:
         logging.getLogger(name).addFilter(f)
