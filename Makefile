@@ -64,7 +64,7 @@ test-core: venv
 	$(VENV)/bin/pytest tests/core tests/numerics
 
 bench: venv
-	$(PY) benchmarks/core/core_throughput.py
+	$(PY) -m benchmarks.core.core_throughput
 
 # The charts of the methods' benchmarks (benchmarks/core/methods.py and stability_map.py
 # write benchmarks/results/*.csv): their HTML pages there, and the two CSV files the
@@ -115,15 +115,15 @@ replica-smoke: venv nginx
 # docker/nginx.conf.  Per level: latency, CPU per serving process (max/mean), sessions
 # per replica, CPU per move; at the end the students per core at p95 <= 200 ms.
 load-test: venv nginx
-	$(PY) benchmarks/app/load_test.py --replicas 2
+	$(PY) -m benchmarks.app.load_test --replicas 2
 
 load-test-replicas: load-test
 
 # Server memory: 50 + 50 page loads and their cleanup, then 10,000 psi moves in one
 # session (RSS sampled every 500; about 20 minutes on 2 cores).
 soak: venv
-	$(PY) benchmarks/app/soak.py
+	$(PY) -m benchmarks.app.soak
 
 # Server time of a page load: median of 20 sequential GETs of /main on an idle server.
 page-load: venv
-	$(PY) benchmarks/app/page_load.py
+	$(PY) -m benchmarks.app.page_load
