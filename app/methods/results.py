@@ -56,7 +56,7 @@ FILES: dict[str, ResultsFile] = {
     "speed_accuracy.csv": ResultsFile(
         "speed against accuracy of the numerical methods of core.numerics and the closed "
         "form, one row per run and case",
-        "python benchmarks/core/methods.py",
+        "python -m benchmarks.core.methods",
         {_METHOD[0]: _METHOD[1],
          "resolution": ("", "springs (mdr), rings (annulus), points or time steps per "
                             "contact (the DEM rules), nodes (quadratures)"),
@@ -75,7 +75,7 @@ FILES: dict[str, ResultsFile] = {
     "stability_map.csv": ResultsFile(
         "stability map: the error of each method at a fixed resolution over a (psi, tau0) "
         "grid, one row per method and cell",
-        "python benchmarks/core/stability_map.py",
+        "python -m benchmarks.core.stability_map",
         {_METHOD[0]: _METHOD[1],
          "resolution": ("", "the method's fixed resolution (springs, rings or steps)"),
          **_CASE,

@@ -268,8 +268,8 @@ def test_every_method_has_its_own_colour_and_marker_in_each_chart() -> None:
 
 
 @pytest.mark.parametrize(("name", "command"), [
-    ("speed_accuracy.csv", "python benchmarks/core/methods.py"),
-    ("stability_map.csv", "python benchmarks/core/stability_map.py")])
+    ("speed_accuracy.csv", "python -m benchmarks.core.methods"),
+    ("stability_map.csv", "python -m benchmarks.core.stability_map")])
 def test_the_results_downloads_carry_the_explorers_header(ex: Explorer, name: str,
                                                           command: str) -> None:
     """Source, app version, command and each column with its unit, then the very rows
