@@ -88,6 +88,9 @@ DRIVES = ("psi", "angle")
 #: The physical inputs, in SI units: R, H, u0, h (m), G (Pa), omega (rad/s).
 SI_KEYS = ("R", "G", "H", "u0", "h", "omega")
 
+#: The state's parameters that define the contact (`ExplorerState.contact`).
+CONTACT_INPUTS = ("psi", "tau0", "mu", "nu", "drive", "theta", "physical", *SI_KEYS)
+
 #: Query parameters written to / read from the URL, in this order.  With physical = 1
 #: the URL holds the physical inputs (SI units), and psi and tau0 follow from them.
 QUERY_KEYS = ("psi", "tau0", "mu", "nu", "tau", "log_psi", "preset", "drive", "theta",
@@ -217,21 +220,30 @@ class ExplorerState(param.Parameterized):
                 setattr(self, k, v)
         return bool(fixes)
 
+    @param.depends(*CONTACT_INPUTS, "tau", watch=True)
+    def _follow_inputs(self) -> None:
+        """The state corrects itself after any change of the contact's inputs or of tau
+        (a link, a preset, SI inputs, the Motor card's contact): `corrections`.  A
+        combination core refuses is left uncorrected (the view says why).  Its own
+        watcher, registered first, runs before any view's, so that a view is called
+        again with the corrected state."""
+        try:
+            c = self.contact()
+        except ValueError:
+            return
+        self.correct(c)
+
     def set_input(self, name: str, value: object) -> None:
         """Set parameter `name` to `value` and, in the same batch of watchers, what
         follows from it (`corrections`): each watcher is called once, on the corrected
-        state (a slider's move, one pass of the view).  ValueError, nothing changed, if
-        the parameter refuses `value`; a combination core refuses is set uncorrected
-        (the view says why)."""
+        state (a slider's move, one pass of the view; `_follow_inputs` then finds
+        nothing to correct).  ValueError, nothing changed, if the parameter refuses
+        `value`."""
         if getattr(self, name) == value:
             return  # (a widget following the state: its value is the state's)
         with param.parameterized.batch_call_watchers(self):
             setattr(self, name, value)
-            try:
-                c = self.contact()
-            except ValueError:
-                return
-            self.correct(c)
+            self._follow_inputs()
 
     def drive_psi(self) -> float:
         """The psi of the drive: the state's own, or with drive = 'angle' the one theta,

@@ -9,8 +9,8 @@ The path from a slider to a plot is short (docs/app.md, "How data flows"):
 `show_state` depends on every input of the contact and on tau: it rebuilds the
 `core.Contact` and refreshes every scene when the contact differs from the one shown,
 refreshes only what depends on tau when only tau differs, and does nothing when both are
-shown; a state it must correct first (psi and tau0 derived from SI inputs, tau clamped
-into the contact) it corrects, and the change that makes shows it.  All changes of one
+shown; the state corrects itself first (psi and tau0 derived from SI inputs, theta
+from psi, tau clamped into the contact: `ExplorerState._follow_inputs`).  All changes of one
 step reach the browser as one message (`panel.io.hold`).  The curve scenes share one
 card of tabs: only the open tab is computed, the others catch up when opened.
 
@@ -37,16 +37,13 @@ from app.contact.notes import NOTES
 from app.contact.player import Player
 from app.contact.readout import Readout
 from app.contact.spheres import SpheresScene
-from app.contact.state import PRESETS, SI_KEYS, ExplorerState
+from app.contact.state import CONTACT_INPUTS, PRESETS, ExplorerState
 from app.contact.traction import DiscScene, TractionScene
 from app.kit.batch import held
 from app.kit.figures import Scene
 from app.kit.style import TAB_ROW_CSS
 from app.kit.texts import PaneText
 from core import Contact
-
-#: The state's parameters that define the contact (`ExplorerState.contact`).
-CONTACT_INPUTS = ("psi", "tau0", "mu", "nu", "drive", "theta", "physical", *SI_KEYS)
 
 #: The curve tabs' titles, in the order of `ContactView.tabbed`.
 TAB_TITLES = ("T(τ) (Fig. 7)", "Impulse (Fig. 8)", "Radii (Fig. 4b)", "Centre motion (Fig. 9)")
@@ -104,12 +101,10 @@ class ContactView(param.Parameterized):
         """Show the state: refresh every scene if its contact is not the one shown, else
         what depends on tau if its tau is not the one shown, else nothing.
 
-        A state that needs correcting first (with SI inputs psi and tau0 follow from
-        them; with drive = 'angle' psi follows from theta, mu and nu; else theta, in
-        degrees, follows psi, mu and nu (eq 23); tau is kept inside the contact) is
-        corrected, and the change that makes calls this again to show it.  SI inputs
-        that core refuses together, or a drive angle whose psi core refuses, are not
-        applied (the physical inputs' card says why, under its boxes)."""
+        The state corrects itself before this is called (`ExplorerState._follow_inputs`:
+        theta or psi by eq 23, psi and tau0 from SI inputs, tau inside the contact).
+        SI inputs that core refuses together, or a drive angle whose psi core refuses,
+        are not shown (the physical inputs' card says why, under its boxes)."""
         s = self.state
         self.controls.show_drive(s)
         try:
@@ -118,8 +113,6 @@ class ContactView(param.Parameterized):
             if s.physical or s.drive == "angle":
                 return
             raise
-        if s.correct(c):  # (the corrections' batch of watchers calls this again)
-            return
         if (c, c.scales) != (self.shown, self.shown.scales):
             self.shown = c
             self.refresh()

@@ -17,8 +17,8 @@ import html
 import panel as pn
 import param
 
-from app.contact.state import ExplorerState
-from app.contact.view import CONTACT_INPUTS, ContactView
+from app.contact.state import CONTACT_INPUTS, ExplorerState
+from app.contact.view import ContactView
 from app.dem.view import DemCard
 from app.kit.style import MESSAGE_STYLE
 from app.kit.widgets import LabelledCheckbox, shortened
