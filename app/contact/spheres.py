@@ -6,9 +6,10 @@ theta from the vertical).  While they touch, both are drawn flattened at the pla
 midway between them, with the contact patch of radius a (eq 7) on it: the stick disc
 b (eq 30) in the stick colour, the rest of the patch in the colour of what it does
 (slip or counter-slip).  Arrows give the forces on the upper sphere: P / P0 up (eq 9)
-and T / T0 along the drive (eqs 38, 39; T0 = mu P0), on one length scale, the contact's
-largest P drawn `ARROW` radii long.  The badge
-names the phase (`Contact.phase`).
+and T along the drive (eqs 38, 39; T0 = mu P0), in one physical unit (`force_unit`: the
+contact's largest P, or mu P if longer, drawn `ARROW` radii long), with the Coulomb bound
++-mu P that T stays within (slipping, T reaches it).  The badge names the phase
+(`Contact.phase`).
 
 Displacements are exaggerated: the normal amplitude H is drawn as `DRIVE` sphere radii
 and u0 at the true angle theta up to `MAX_SIDE` radii (the scale is stated on the plot).
@@ -75,6 +76,9 @@ MAX_SIDE = 0.45  # the largest drawn tangential amplitude u0, in sphere radii
 ARROW = 0.9  # the drawn length of the contact's largest P (at pi/2), in radii
 OUTLINE_POINTS = 97  # points of each sphere's outline
 HEAD_SIZE = 13  # arrow heads, screen pixels
+BOUND_TICK = 0.05  # half the height of the ticks at the ends of the +-mu P bound, radii
+#: What the ticked dashes about the arrows' foot are (under the drive line's note).
+BOUND_WORDS = "ticks: T's Coulomb bound ±μP (P, T to one scale)"
 
 _ANGLES = np.linspace(0.0, 2.0 * math.pi, OUTLINE_POINTS)
 #: the unit circle's outline and the held upper sphere's (centre (0, 1)), radii
@@ -132,6 +136,51 @@ def _rows(*columns: np.ndarray) -> np.ndarray:
     return np.array(columns).T
 
 
+def force_unit(c: Contact) -> float:
+    """The drawn length (sphere radii) of a force P0 on the upper sphere: both forces
+    are drawn in this one physical unit, so that the contact's largest P, (1 - sin
+    tau0)^(3/2) P0 at pi/2 (eq 9), or its largest mu P, whichever is longer, is `ARROW`
+    long."""
+    return ARROW / (one_minus_sin_tau0(c) ** 1.5 * max(1.0, c.mu))
+
+
+def force_arrows(c: Contact, P: np.ndarray, T: np.ndarray, xc: np.ndarray,
+                 y: np.ndarray) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
+    """The arrows of the forces on the upper sphere at K times, from the contact's centre
+    (`xc`, `y`, sphere radii): P / P0 up (eq 9) and T along the drive (eqs 38, 39), both
+    in the unit `force_unit` (T / P0 = mu T / T0: slipping, T is as long as mu P, the
+    Coulomb bound), with their labels (every one while the spheres touch, however short
+    its arrow); and the bound itself, the segment of +-mu P (dashed, with its end
+    ticks: `BOUND_WORDS`) that T stays within.  Columns of shape (K, 2)."""
+    K = P.size
+    unit = force_unit(c)
+    uP, uT, uB = unit * P, unit * c.mu * T, unit * c.mu * P
+    touching = P > 0
+    head = _rows(uP, np.abs(uT)) > 0.01  # an arrow long enough for its head
+    labels = np.array([[f"P = {p:.3g} P₀", f"T = {t:+.3g} T₀"]
+                       for p, t in zip(P.tolist(), T.tolist(), strict=True)],
+                      dtype=object).reshape(K, 2)
+    tip_y = _rows(y + uP, y)
+    forces = {
+        "x0": _rows(xc, xc), "y0": _rows(y, y),
+        "x1": _rows(xc, xc + uT), "y1": tip_y,
+        # labels: P's beside its tip, T's below its arrow (beside the bound's ticks)
+        "lx": _rows(xc + 0.08, xc + uT / 2),
+        "ly": tip_y - _LABEL_DROP,
+        "align": np.array([["left", "center"]] * K, dtype=object),
+        "head": np.where(head, HEAD_SIZE, 0),
+        # the triangle marker points up; turned to point along T
+        "angle": _rows(0.0 * T, np.where(T < 0, math.pi / 2, -math.pi / 2)),
+        # (every label while they touch, however short its arrow)
+        "label": np.where(touching[:, None], labels, ""),
+    }
+    bound = {"x0": _rows(xc - uB, xc + uB), "x1": _rows(xc - uB, xc + uB),
+             "y0": _rows(y - BOUND_TICK, y - BOUND_TICK),
+             "y1": _rows(y + BOUND_TICK, y + BOUND_TICK),
+             "y": _rows(y, y)}
+    return forces, bound
+
+
 def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
     """What the scene draws at each of the K times `taus`, in sphere radii: per source
     name, its columns as arrays of shape (K, n) (n rows per time).
@@ -169,31 +218,13 @@ def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
         "color": np.array([[r, STICK_COLOR, r] for r in ring], dtype=object),
     }
     P, T = line.normal_force, line.tangential_force
-    # one length scale for both (T / T0 and mu P / T0 = P / P0 are in the same units):
-    # the contact's largest P, (1 - sin tau0)^(3/2) P0 at pi/2 (eq 9), is ARROW long
-    unit = ARROW / gap**1.5
-    uT = unit * T
-    shown = _rows(P, np.abs(T)) * unit > 0.01  # a force drawn with its head
-    labels = np.array([[f"P = {p:.3g} P₀", f"T = {t:+.3g} T₀"]
-                       for p, t in zip(P.tolist(), T.tolist(), strict=True)],
-                      dtype=object).reshape(K, 2)
-    tip_x, tip_y = _rows(xc, xc + uT), _rows(y + unit * P, y)
-    forces = {
-        "x0": _rows(xc, xc), "y0": _rows(y, y),
-        "x1": tip_x, "y1": tip_y,
-        # labels: P's beside its tip, T's centred below its arrow
-        "lx": _rows(xc + 0.08, xc + uT / 2),
-        "ly": tip_y - _LABEL_DROP,
-        "align": np.array([["left", "center"]] * K, dtype=object),
-        "head": np.where(shown, HEAD_SIZE, 0),
-        # the triangle marker points up; turned to point along T
-        "angle": _rows(0.0 * T, np.where(T < 0, math.pi / 2, -math.pi / 2)),
-        "label": np.where(shown, labels, ""),
+    forces, bound = force_arrows(c, P, T, xc, y)
+    forces.update({
         # the time and the contact, what every plot's stamp shows (`follow_clock`: this
         # source changes with each of them, on a slider move as on a played frame)
         "tau": _rows(taus, taus),
         "psi": np.full((K, 2), c.psi), "tau0": np.full((K, 2), c.tau0),
-    }
+    })
     badge = {"text": np.array([[look.name] for look in looks], dtype=object),
              "color": np.array([[look.color] for look in looks], dtype=object)}
     return {
@@ -201,6 +232,7 @@ def drawing(c: Contact, taus: np.ndarray) -> dict[str, dict[str, np.ndarray]]:
         "spheres_lower": {"x": cx[:, None] + _COS, "y": lower_y},
         "spheres_patch": patch,
         "spheres_forces": forces,
+        "spheres_bound": bound,
         "spheres_badge": badge,
         "spheres_period_marker": {"x": strip_x(taus)[:, None], "y": strip_y(taus)[:, None]},
     }
@@ -267,6 +299,12 @@ class SpheresScene(Scene):
              name="spheres_drive_line")
         draw(fig, Segment, s["spheres_patch"], x0="x0", y0="y", x1="x1", y1="y",
              color="color", line_width=9, level=FRAME_LEVEL)
+        # the Coulomb bound +-mu P that T stays within: dashed, its ends ticked
+        bound = s["spheres_bound"]
+        draw(fig, Segment, bound, x0="x0", y0="y", x1="x1", y1="y", color="#a4161a",
+             line_width=1.5, line_dash="dashed", line_alpha=0.7, level=FRAME_LEVEL)
+        draw(fig, Segment, bound, x0="x0", y0="y0", x1="x1", y1="y1", color="#a4161a",
+             line_width=2, level=FRAME_LEVEL)
         draw(fig, Segment, s["spheres_forces"], x0="x0", y0="y0", x1="x1", y1="y1",
              color="#a4161a", line_width=4, level=FRAME_LEVEL)
         draw(fig, Scatter, s["spheres_forces"], x="x1", y="y1", marker="triangle",
@@ -306,7 +344,8 @@ class SpheresScene(Scene):
                           "x1": [reach * u0], "y1": [cy + reach * H]})
         gap = "dashed: at rest, h > 0 (a gap)" if c.tau0 > 0 else \
             "dashed: at rest, h ≤ 0 (a preload)"
-        put(self.h_label, text=f"{gap}\ndrive line at θ = {math.degrees(c.theta):.1f}°")
+        put(self.h_label, text=f"{gap}\ndrive line at θ = {math.degrees(c.theta):.1f}°"
+                                f"\n{BOUND_WORDS}")
         put(self.note, text=scale_note(c))
         if self.new_tau0(c):
             self._show_period(c, cy)

@@ -7,6 +7,7 @@ import html
 import math
 
 import numpy as np
+import pytest
 
 from app.contact import spheres
 from app.contact.controls import DRIVE_NOTES
@@ -107,3 +108,29 @@ def test_a_slider_move_and_what_follows_from_it_are_one_batch() -> None:
     seen.clear()
     ex.contact.controls.theta_slider.value = s.theta  # (a widget following the state)
     assert seen == []
+
+
+@pytest.mark.parametrize("mu", [0.2, 3.0])
+def test_the_forces_are_drawn_to_one_scale_within_their_coulomb_bound(mu: float) -> None:
+    """P and T in one physical unit: slipping, the T arrow reaches the bound +-mu P drawn
+    about its foot (it was as long as P: T / T0 and P / P0 on one scale); sticking, it
+    (partial stick) stays inside; the longer of P and mu P is ARROW long; a tiny T keeps its label."""
+    c = Contact(2.414, math.pi / 6, mu=mu)
+    taus = np.array([c.tau0 + 1e-9, math.pi / 3, math.pi / 2, 2.2])
+    phases = c.phase(taus)
+    d = spheres.drawing(c, taus)
+    f, bound = d["spheres_forces"], d["spheres_bound"]
+    P_len = f["y1"][:, 0] - f["y0"][:, 0]
+    T_len = f["x1"][:, 1] - f["x0"][:, 1]
+    reach = bound["x1"][:, 1] - f["x0"][:, 1]  # +mu P, from the arrows' foot
+    np.testing.assert_allclose(reach, mu * P_len, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(bound["x1"][:, 0] - f["x0"][:, 1], -reach, rtol=1e-12)
+    slipping = phases == 2  # (Phase.SLIP: |T| = mu P, eq 38)
+    sticking = phases == 3  # (Phase.PARTIAL_STICK: |T| < mu P)
+    assert slipping.any() and sticking.any()
+    np.testing.assert_allclose(np.abs(T_len[slipping]), reach[slipping], rtol=1e-12)
+    assert np.all(np.abs(T_len[sticking]) < reach[sticking])
+    largest = float(c.normal_force(math.pi / 2)) * spheres.force_unit(c)
+    assert max(1.0, mu) * largest == pytest.approx(spheres.ARROW, rel=1e-12)
+    assert f["label"][0, 1] == f"T = {float(c.tangential_force(taus[0])):+.3g} T₀"
+    assert spheres.BOUND_WORDS in Explorer().contact.spheres.h_label.text

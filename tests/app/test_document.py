@@ -314,7 +314,7 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
                for e in events}
     data = {("ColumnDataSource", n, "data") for n in (
         "traction", "disc", "force", "force_marker", "force_landmarks",
-        "spheres_drive", "spheres_lower", "spheres_patch", "spheres_forces")}
+        "spheres_drive", "spheres_lower", "spheres_patch", "spheres_forces", "spheres_bound")}
     slider = doc.select_one({"tags": "psi-slider"}).data  # a LabelledSlider's values
     # (the drive angle's slider follows psi: theta = arctan(psi tan theta0))
     theta = doc.select_one({"tags": "theta-slider"}).data
@@ -971,11 +971,15 @@ def test_the_spheres_are_drawn_from_core(psi: float, tau0: float, tau: float) ->
                                     look.ring_color]
     f = s["spheres_forces"].data
     P, T = float(c.normal_force(tau)), float(c.tangential_force(tau))
-    unit = spheres.ARROW / float(c.normal_force(math.pi / 2))  # the largest P: ARROW long
+    # one physical unit for both (T / P0 = mu T / T0): the largest P (mu = 0.2) ARROW long
+    unit = spheres.ARROW / float(c.normal_force(math.pi / 2))
     np.testing.assert_allclose(np.subtract(f["y1"], f["y0"]), [unit * P, 0], atol=1e-12)
-    np.testing.assert_allclose(np.subtract(f["x1"], f["x0"]), [0, unit * T], atol=1e-12)
-    assert list(f["label"]) == [f"P = {P:.3g} P₀",
-                                f"T = {T:+.3g} T₀" if abs(T) * unit > 0.01 else ""]
+    np.testing.assert_allclose(np.subtract(f["x1"], f["x0"]), [0, unit * c.mu * T],
+                               atol=1e-12)
+    assert list(f["label"]) == [f"P = {P:.3g} P₀", f"T = {T:+.3g} T₀"]
+    bound = s["spheres_bound"].data  # the Coulomb bound +-mu P, about the arrows' foot
+    np.testing.assert_allclose(np.subtract(bound["x0"], f["x0"][1]),
+                               [-unit * c.mu * P, unit * c.mu * P], atol=1e-12)
     assert s["spheres_badge"].data["text"] == [look.name]
     assert s["spheres_badge"].data["color"] == [look.color]
 

@@ -80,3 +80,36 @@ def test_the_pictograms_are_static_per_contact() -> None:
     """They are no part of a frame: the player's frames hold the spheres, not them."""
     assert "spheres_pictograms" not in SpheresScene.drawing(Contact(2.414, 0.5),
                                                             np.array([1.0, 2.0]))
+
+
+#: JavaScript: the painted ends (CSS px) of the segments of the named source, per row:
+#: [[sx0, sy0, sx1, sy1], ...] of its first solid Segment renderer.
+JS_PAINTED = """(name) => {
+  const v = __renderers().find((r) => r.model.data_source.name === name
+      && r.model.glyph.type === "Segment"
+      && JSON.stringify(r.model.glyph.line_dash.value) === "[]");
+  const g = v.glyph;
+  return [...Array(g.sx0.length).keys()].map((i) => [g.sx0[i], g.sy0[i], g.sx1[i], g.sy1[i]]);
+}"""
+
+
+def test_the_forces_are_painted_to_one_scale_with_their_coulomb_bound(browser, url) -> None:
+    """Slipping (psi = 2.414, tau = 1.2 rad), the friction arrow is painted a fifth of the
+    normal one (T = mu P, mu = 0.2) and ends on the tick of the bound +mu P; its label is
+    there however short the arrow.  (P / P0 and T / T0 were painted on one scale, the
+    friction arrow as long as the normal one.)"""
+    page, _ = open_explorer(browser, url + "?psi=2.414&tau=1.2")
+    page.wait_for_function("() => (__col('spheres_bound', 'x0') || []).length === 2",
+                           timeout=20_000)
+    (P, T) = page.evaluate(JS_PAINTED, "spheres_forces")
+    ticks = page.evaluate(JS_PAINTED, "spheres_bound")
+    normal, friction = abs(P[3] - P[1]), T[2] - T[0]
+    c = Contact(2.414, math.pi / 6)
+    assert int(c.phase(1.2)) == 2  # slip
+    assert friction == pytest.approx(0.2 * normal, abs=0.5)
+    assert T[2] == pytest.approx(ticks[1][0], abs=0.5)  # on the +mu P tick
+    assert T[0] == pytest.approx((ticks[0][0] + ticks[1][0]) / 2, abs=0.5)
+    labels = column(page, "spheres_forces", "label")
+    assert labels == [f"P = {float(c.normal_force(1.2)):.3g} P₀",
+                      f"T = {float(c.tangential_force(1.2)):+.3g} T₀"]
+    page.close()
