@@ -11,6 +11,7 @@ lives in `core`.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 
 import param
@@ -43,22 +44,52 @@ def bounds(name: str) -> dict:
     return {"bounds": (d.lo, d.hi), "inclusive_bounds": (not d.lo_open, not d.hi_open)}
 
 
-def parse_value(name: str, raw: str) -> float:
-    """The number a typed or URL text `raw` gives parameter `name`, checked against its
-    domain; ValueError with the message to show (the same for the URL and the boxes)."""
+#: A multiple of pi as people type it: "pi/2", "3pi/4", "3*pi/4", "-π/6", "2 pi".
+PI_TEXT = re.compile(r"^\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)?)\s*\*?\s*(?:pi|π)"
+                     r"\s*(?:/\s*(\d+(?:\.\d*)?))?\s*$", re.IGNORECASE)
+
+
+def number_text(raw: str) -> float | str:
+    """The number a text stands for: a float ("0.5", "1e-3"), or a multiple of pi as
+    people write it (`PI_TEXT`: "pi/2" is pi / 2, rounded once); else the text itself
+    (for the domain's check to refuse, quoting it)."""
     try:
-        value: object = float(raw)
+        return float(raw)
     except ValueError:
-        value = raw
+        pass
+    m = PI_TEXT.match(raw)
+    if m is None:
+        return raw
+    factor = m.group(1)
+    value = (-1.0 if factor == "-" else 1.0 if factor in ("", "+") else float(factor)) * PI
+    return value / float(m.group(2)) if m.group(2) else value
+
+
+def parse_value(name: str, raw: str) -> float:
+    """The number a typed or URL text `raw` gives parameter `name` (`number_text`: a
+    number, or a multiple of pi), checked against its domain; ValueError with the
+    message to show (the same for the URL and the boxes).  A text that reads as an
+    infinite float ("1e400") is refused as the text typed, too large."""
+    value = number_text(raw)
+    if isinstance(value, float) and math.isinf(value) and raw.strip().lstrip("+-").lower() \
+            not in ("inf", "infinity"):
+        raise ValueError(f"{name} = {raw.strip()} is too large: it is outside the allowed "
+                         f"range {domain(name).describe()}")
     return domain(name).check(name, value)
 
 
 def parse_tau(raw: str, c: Contact) -> float:
-    """A time tau (rad) inside the contact of `c`, [tau0, pi - tau0]; ValueError else."""
-    tau = parse_value("tau", raw)
+    """A time tau (rad) inside the contact of `c`, [tau0, pi - tau0]; ValueError else,
+    quoting the contact's range."""
+    where = f"the contact [{c.tau0:.4g}, {c.tau_end:.4g}] (tau0 = {c.tau0:.4g})"
+    try:
+        tau = parse_value("tau", raw)
+    except ValueError:
+        if isinstance(number_text(raw), str):  # (not a number at all: say so)
+            raise ValueError(f"tau must be a real number in {where}, got {raw!r}") from None
+        tau = math.inf
     if not c.tau0 <= tau <= c.tau_end:
-        raise ValueError(f"tau = {raw} is outside the contact [{c.tau0:.4g}, {c.tau_end:.4g}]"
-                         f" (tau0 = {c.tau0:.4g})")
+        raise ValueError(f"tau = {raw} is outside {where}")
     return tau
 
 

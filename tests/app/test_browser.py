@@ -202,6 +202,23 @@ def test_a_refused_entry_says_why_under_its_box_and_keeps_the_value(
     page.close()
 
 
+@pytest.mark.parametrize(("name", "typed", "value"), [("tau0", "pi/4", math.pi / 4),
+                                                     ("tau", "3pi/4", 3 * math.pi / 4)])
+def test_a_box_takes_a_multiple_of_pi_as_typed(browser, url, name: str, typed: str,
+                                               value: float) -> None:
+    """"pi/2" was refused ("must be a real number"): a teacher types the paper's times
+    as the paper writes them."""
+    page, console = open_explorer(browser, url)
+    entry = page.locator(f".entry-{name} input")
+    entry.fill(typed)
+    entry.press("Enter")
+    page.wait_for_function("([n, v]) => __slider(n).value === v", arg=[name, value],
+                           timeout=20_000)
+    assert entry.input_value() == f"{value:.6g}"
+    assert errors(console) == []
+    page.close()
+
+
 @pytest.mark.smoke
 def test_bad_query_shows_message_and_falls_back(browser, url) -> None:
     query = {"psi": "banana", "tau0": "9"}

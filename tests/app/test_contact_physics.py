@@ -113,8 +113,9 @@ def test_a_slider_move_and_what_follows_from_it_are_one_batch() -> None:
 @pytest.mark.parametrize("mu", [0.2, 3.0])
 def test_the_forces_are_drawn_to_one_scale_within_their_coulomb_bound(mu: float) -> None:
     """P and T in one physical unit: slipping, the T arrow reaches the bound +-mu P drawn
-    about its foot (it was as long as P: T / T0 and P / P0 on one scale); sticking, it
-    (partial stick) stays inside; the longer of P and mu P is ARROW long; a tiny T keeps its label."""
+    about its foot (it was as long as P: T / T0 and P / P0 on one scale); in partial
+    stick it stays inside; the longer of P and mu P is ARROW long; a tiny T keeps its
+    label."""
     c = Contact(2.414, math.pi / 6, mu=mu)
     taus = np.array([c.tau0 + 1e-9, math.pi / 3, math.pi / 2, 2.2])
     phases = c.phase(taus)

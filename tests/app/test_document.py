@@ -546,6 +546,24 @@ def test_parse_query_rejects_bad_values(query: dict, fragment: str) -> None:
     assert rejected not in values
 
 
+@pytest.mark.parametrize(("query", "message"), [
+    ({"psi": "1e400"}, "psi = 1e400 is too large: it is outside the allowed range [0, 1e+12]"),
+    ({"tau": "10"}, "tau = 10 is outside the contact [0.5236, 2.618] (tau0 = 0.5236)"),
+    ({"tau": "abc"}, "tau must be a real number in the contact [0.5236, 2.618]"),
+])
+def test_a_refusal_quotes_the_text_and_the_range_that_apply(query: dict, message: str) -> None:
+    """"1e400" was refused as "got inf", and tau = 10 with the app's [-pi/2, 3 pi/2]
+    rather than the contact's range."""
+    values, messages = parse_query(query)
+    assert len(messages) == 1 and messages[0].startswith(message), messages
+    assert next(iter(query)) not in values
+
+
+def test_a_link_takes_multiples_of_pi() -> None:
+    values, messages = parse_query({"tau0": "pi/6", "tau": "3pi/4"})
+    assert messages == [] and values["tau0"] == math.pi / 6 and values["tau"] == 3 * math.pi / 4
+
+
 def test_bad_query_shows_message_and_keeps_defaults() -> None:
     ex = Explorer(query={"psi": [b"-3"], "mu": [b"0.3"]})
     assert ex.message.visible and "psi = -3 is outside the allowed range" in ex.message.object
