@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import html
 import io
+import math
 from collections.abc import Callable
 from functools import partial
 from typing import Protocol
@@ -49,6 +50,11 @@ DRIVE_NOTES = {
              "(eq 23), so more friction (a larger θ₀) means a smaller ψ and longer stick.",
     "physical": "ψ and τ₀ follow from the physical inputs (θ = arctan(u₀/H)), μ and ν.",
 }
+
+#: The tau slider's step (rad): one degree of the period a key press (Page Up / Down
+#: five), about 120 steps over a contact of tau0 = pi/6, where 0.002 rad moved nothing
+#: one could see.
+TAU_STEP = math.pi / 180
 
 #: The note of a preset left: in its place, faded.
 LEFT_NOTE_STYLE = {**NOTE_STYLE, "opacity": "0.45"}
@@ -100,7 +106,7 @@ class Controls:
         c = state.contact()
         self.tau_slider = ExactSlider(
             label="τ = ωt (rad): time", value=state.tau, start=c.tau0, end=c.tau_end,
-            step=0.002, parse=lambda text: parse_tau(text, view.shown), name="tau",
+            step=TAU_STEP, parse=lambda text: parse_tau(text, view.shown), name="tau",
             direct=True)
         follow(self.tau_slider, state.param.tau, state.set_input)
         self.play_button = PlayButton(width=110)  # (the keyboard stays on it)
@@ -121,10 +127,12 @@ class Controls:
         self.note = pn.pane.HTML("", sizing_mode="stretch_width", styles=NOTE_STYLE)
         self.show_preset(state.preset, NOTES.get(state.preset, ""))
         self.reset_button = pn.widgets.Button(label="Reset", width=100)
-        self.reset_button.on_click(lambda _: state.reset())
+        self.reset_button.on_click(lambda _: (state.reset(), self.clear_refusals()))
 
         self.physical_inputs = PhysicalInputs(state)  # R in mm, G in GPa, ...
         self.physical_box = self.physical_inputs.physical_box
+        # (the boxes the SI inputs replace say nothing of a value refused before)
+        state.param.watch(lambda _: self.clear_refusals(), "physical")
         self.material_select = self.physical_inputs.material_select
         self.physical_card = self.physical_inputs.card
         self._drive_shown: tuple[bool, str] | None = None
@@ -174,6 +182,12 @@ class Controls:
     def show_playing(self, playing: bool) -> None:
         """Play/Pause's label and colour."""
         self.play_button.show(playing)
+
+    def clear_refusals(self) -> None:
+        """No box says why a value was refused any more (after Reset, or a switch of the
+        physical inputs: the value they quote is no longer on screen)."""
+        for slider in self.sliders():
+            slider.error = ""
 
     def sliders(self) -> list[ExactSlider]:
         """The sliders whose browser moves are taken as they arrive

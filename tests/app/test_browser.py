@@ -781,3 +781,25 @@ def test_nothing_is_clipped_from_a_phone_to_2560_wide(browser, url, width: int,
     assert page.evaluate(JS_CLIPPED_OPTIONS) == []  # every preset's name shows whole
     assert errors(console) == []
     page.close()
+
+
+def test_a_key_press_moves_tau_one_degree(browser, url) -> None:
+    """The tau slider stepped 0.002 rad a key press: about a thousand presses for one
+    contact, none of them visible."""
+    from app.contact.controls import TAU_STEP
+
+    page, console = open_explorer(browser, url)
+    before = page.evaluate("() => __slider('tau').value")
+    thumb = page.locator(".slider-tau input[type=range]")
+    thumb.focus()
+    thumb.press("ArrowRight")
+    page.wait_for_function("(v) => __slider('tau').value > v", arg=before, timeout=20_000)
+    start = page.evaluate("() => __slider('tau').start")
+    after = page.evaluate("() => __slider('tau').value")
+    # one step, from the value snapped to start + k step (the browser's range input)
+    assert 0.5 * TAU_STEP - 1e-9 <= after - before <= 1.5 * TAU_STEP + 1e-9
+    k = (after - start) / TAU_STEP
+    assert k == pytest.approx(round(k), abs=1e-6)
+    assert TAU_STEP == pytest.approx(math.radians(1))
+    assert errors(console) == []
+    page.close()

@@ -1157,3 +1157,18 @@ def test_the_view_is_chosen_by_the_url_and_kept_in_it() -> None:
     assert ex.view_name == "" and ex.messages == [
         "view = '<b>x</b>' is unknown (known: present); the full page is shown"]
     assert "&lt;b&gt;" in ex.message.object  # shown as text
+
+
+def test_reset_and_the_physical_inputs_clear_a_refusal_message() -> None:
+    """"theta = 95 ..." stayed under its box after Reset and after the switch to the
+    physical inputs, quoting a value no longer on screen."""
+    ex = Explorer()
+    controls = ex.contact.controls
+    controls.theta_slider._entry.value = "95"  # typed in the box
+    assert "theta = 95" in controls.theta_slider.error
+    controls.reset_button.clicks += 1
+    assert controls.theta_slider.error == ""
+    controls.psi_slider._entry.value = "-1"
+    assert controls.psi_slider.error
+    controls.physical_box.value = True
+    assert controls.psi_slider.error == ""
