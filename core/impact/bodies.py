@@ -47,6 +47,10 @@ def check_real(name: str, value: object, lo: float = -math.inf, hi: float = math
     return v
 
 
+#: Where Coulomb's bound sits when e < 1 (``Impact.bound``).
+BOUNDS = ("total", "elastic")
+
+
 @dataclass(frozen=True)
 class Material:
     """An isotropic elastic material: Young's modulus E (Pa), Poisson ratio nu, density
@@ -106,7 +110,9 @@ class Impact:
     friction ``mu``, normal restitution ``e`` (1: elastic Hertz; < 1: the viscous model of
     ``core.impact.normal``, a model choice) and the velocities just before contact: the
     sphere's centre (vx, vz; vz < vz2 so that the bodies approach), its spin w (rad/s,
-    about y), the target's (vx2, vz2, w2; zero unless the target is free)."""
+    about y), the target's (vx2, vz2, w2; zero unless the target is free). ``bound``: for
+    e < 1, Coulomb's bound on the total normal force ("total", elastic plus dashpot) or on
+    the elastic force alone ("elastic"); both are model choices (``core.impact.kernel``)."""
 
     radius: float
     material: Material
@@ -120,9 +126,12 @@ class Impact:
     vz2: float = 0.0
     w2: float = 0.0
     K2: float = 0.4
+    bound: str = "total"
 
     def __post_init__(self) -> None:
         check_real("radius", self.radius, 0.0, 1e3, lo_open=True)
+        if self.bound not in BOUNDS:
+            raise ValueError(f"bound must be one of {', '.join(BOUNDS)}, got {self.bound!r}")
         check_real("mu", self.mu, 0.0, 10.0, lo_open=True)
         check_real("e", self.e, 0.05, 1.0)
         check_real("K2", self.K2, 0.0, 1.0, lo_open=True)
@@ -224,4 +233,4 @@ class Impact:
         return self.alpha_star / self.v_n
 
 
-__all__ = ["Impact", "Material", "Target", "check_real"]
+__all__ = ["BOUNDS", "Impact", "Material", "Target", "check_real"]

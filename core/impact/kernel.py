@@ -70,7 +70,7 @@ def spring_force(x, d, scale):
 
 
 @njit(cache=True, nogil=True)
-def step(h, d, dv, D, Dv, f, T, u, x, scale, chi, gamma):
+def step(h, d, dv, D, Dv, f, T, u, x, scale, chi, gamma, total):
     """One Verlet step of length h from (d, d', D, D') with forces (f, T) there; u (the
     springs) is updated in place. Returns (d, d', D, D', f, T, slip work of the step in
     mu E* alpha* a* delta*).
@@ -79,7 +79,8 @@ def step(h, d, dv, D, Dv, f, T, u, x, scale, chi, gamma):
     (elastic plus dashpot), shared like the elastic force: mu k w with k = f / ((15/16) P)
     at the step's end. ``march`` is given the approach k d and the positions k^(1/2) x,
     which scales every spring's bound w = d - x^2 by k without changing which springs
-    touch; k = 1 without a dashpot (e = 1)."""
+    touch; k = 1 without a dashpot (e = 1) or when ``total`` is False (the bound on the
+    elastic force alone, the other model choice)."""
     kt = (15.0 / 8.0) * chi
     dvh = dv - 0.5 * h * f
     Dvh = Dv + 0.5 * h * (-kt * T)
@@ -88,7 +89,7 @@ def step(h, d, dv, D, Dv, f, T, u, x, scale, chi, gamma):
     Pn = spring_force(x, max(dn, 0.0), scale)
     dvn, fn = _normal(Pn, dn, dvh, h, gamma)
     k = 1.0
-    if gamma != 0.0 and Pn > 0.0:
+    if total and gamma != 0.0 and Pn > 0.0:
         k = fn / ((15.0 / 16.0) * Pn)
     dd = np.empty(2)
     dr = np.empty(2)
@@ -104,7 +105,7 @@ def step(h, d, dv, D, Dv, f, T, u, x, scale, chi, gamma):
 
 
 @njit(cache=True, nogil=True)
-def impact(psi1, chi, gamma, x, scale, tol, h0, max_steps):
+def impact(psi1, chi, gamma, x, scale, tol, h0, max_steps, total=True):
     """Integrate one impact from first touch (d = 0, d' = 1, D = 0, D' = psi1) until the
     bodies separate (d < 0 moving apart, every spring out of contact). Returns the history
     (rows of ``HISTORY_COLUMNS``, the accepted steps) and the number of rejected steps.
@@ -127,10 +128,11 @@ def impact(psi1, chi, gamma, x, scale, tol, h0, max_steps):
     while k < max_steps:
         if adaptive:
             u1[:] = u
-            r1 = step(h, d, dv, D, Dv, f, T, u1, x, scale, chi, gamma)
+            r1 = step(h, d, dv, D, Dv, f, T, u1, x, scale, chi, gamma, total)
             u2[:] = u
-            a = step(0.5 * h, d, dv, D, Dv, f, T, u2, x, scale, chi, gamma)
-            r2 = step(0.5 * h, a[0], a[1], a[2], a[3], a[4], a[5], u2, x, scale, chi, gamma)
+            a = step(0.5 * h, d, dv, D, Dv, f, T, u2, x, scale, chi, gamma, total)
+            r2 = step(0.5 * h, a[0], a[1], a[2], a[3], a[4], a[5], u2, x, scale, chi, gamma,
+                      total)
             err = max(abs(r1[0] - r2[0]), abs(r1[1] - r2[1]),
                       abs(r1[2] - r2[2]) / scale_D, abs(r1[3] - r2[3]) / scale_D) / 3.0
             if err > tol and h > 1e-14:
@@ -145,7 +147,7 @@ def impact(psi1, chi, gamma, x, scale, tol, h0, max_steps):
             h_used = h
             h *= grow
         else:
-            r = step(h, d, dv, D, Dv, f, T, u, x, scale, chi, gamma)
+            r = step(h, d, dv, D, Dv, f, T, u, x, scale, chi, gamma, total)
             slip = r[6]
             d, dv, D, Dv, f, T = r[0], r[1], r[2], r[3], r[4], r[5]
             s += h

@@ -30,7 +30,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from numpy.typing import NDArray
 
-from core.impact.bodies import Impact, check_real
+from core.impact.bodies import BOUNDS, Impact, check_real
 from core.impact.kernel import impact as _integrate
 from core.impact.kernel import separation_time, spring_row
 from core.impact.normal import dashpot
@@ -73,10 +73,12 @@ class Normalised:
 
 
 def normalised(psi1: float, chi: float, e: float = 1.0, springs: int = DEFAULT_SPRINGS,
-               tol: float = DEFAULT_TOL, *, h0: float = 1e-3) -> Normalised:
+               tol: float = DEFAULT_TOL, *, h0: float = 1e-3, bound: str = "total"
+               ) -> Normalised:
     """The impact in MBF's normalised form: D'' = -(15/8) chi T, d'' = -(15/16) P (plus
     the dashpot for e < 1), from d = 0, d' = 1, D = 0, D' = psi1 (``kernel``).
-    ``tol`` 0 with ``h0`` gives fixed steps (for convergence studies)."""
+    ``tol`` 0 with ``h0`` gives fixed steps (for convergence studies); ``bound`` as
+    ``Impact.bound``."""
     psi1 = check_real("psi1", psi1, -1e6, 1e6)
     chi = check_real("chi", chi, 0.0, 100.0, lo_open=True)
     e = check_real("e", e, 0.05, 1.0)
@@ -85,7 +87,10 @@ def normalised(psi1: float, chi: float, e: float = 1.0, springs: int = DEFAULT_S
     h0 = check_real("h0", h0, 1e-7, 0.5, lo_open=True)
     x, scale = spring_row(springs)
     gamma = dashpot(e, springs, tol if tol > 0 else 1e-10)
-    out, rejected = _integrate(psi1, chi, gamma, x, scale, tol, h0, MAX_STEPS)
+    if bound not in BOUNDS:
+        raise ValueError(f"bound must be one of {', '.join(BOUNDS)}, got {bound!r}")
+    out, rejected = _integrate(psi1, chi, gamma, x, scale, tol, h0, MAX_STEPS,
+                               bound == "total")
     if rejected < 0:
         raise RuntimeError(f"the impact did not end within {MAX_STEPS} steps (tol {tol:g})")
     last, prev = out[-1], out[-2]
@@ -166,7 +171,7 @@ def solve(impact: Impact, springs: int = DEFAULT_SPRINGS, tol: float = DEFAULT_T
     if not isinstance(impact, Impact):
         raise ValueError(f"impact must be a core.impact.Impact, got {type(impact).__name__}")
     springs, tol = check_numerics(springs, tol)
-    n = normalised(impact.psi1, impact.chi, impact.e, springs, tol)
+    n = normalised(impact.psi1, impact.chi, impact.e, springs, tol, bound=impact.bound)
     i = impact
     vn, ts = i.v_n, i.time_scale
     slip_unit = i.mu * i.E_star * i.alpha_star / (4.0 * i.G_e)  # delta*

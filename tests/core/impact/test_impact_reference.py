@@ -53,6 +53,14 @@ def test_gross_sliding_with_the_dashpot_follows_the_law_with_e(deg, slack):
     assert 0.0 <= r.tangential_cor - law < slack
 
 
+def test_the_bound_choice_matters_only_with_a_dashpot():
+    elastic = solve(oblique(20.0, bound="elastic"))
+    total = solve(oblique(20.0))
+    assert elastic.tangential_cor == total.tangential_cor  # e = 1: one model
+    damped = [solve(oblique(20.0, e=0.98, bound=b)).tangential_cor for b in ("total", "elastic")]
+    assert damped[0] != damped[1]
+
+
 def test_sliding_threshold_is_four_chi():
     # just below psi1 = 4 chi the contact sticks at the end and psi2 > psi1 - 4 chi
     below = normalised(4 * CHI * 0.8, CHI)
@@ -171,6 +179,7 @@ def test_adaptive_error_follows_the_tolerance():
 @pytest.mark.parametrize("kwargs, word", [
     ({"mu": 0.0}, "mu"), ({"e": 1.5}, "e"), ({"radius": -1.0}, "radius"),
     ({"vz": 1.0}, "approach"), ({"vx": math.nan}, "vx"), ({"vx2": 1.0}, "fixed"),
+    ({"bound": "viscous"}, "bound"),
 ])
 def test_bad_impacts_are_refused(kwargs, word):
     base = {"radius": 1e-3, "material": ALUMINA, "mu": 0.1, "vz": -1.0}
