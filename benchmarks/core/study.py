@@ -14,8 +14,8 @@ measured interleaved).
 3. speeds: how the cost grows with the number of speeds per thrust-speed curve
    (``thrust_speed_curve`` with n speeds, per contact), against the kernel's design.
 4. scaling: designs per second per worker of a study on a LocalCluster of 1 and of 2
-   worker processes (the same study, each cluster warmed before its timed run), and the
-   strong scaling t(1) / t(2).
+   worker processes (the same study; both clusters up and warmed, then timed in turn),
+   and the strong scaling t(1) / t(2), with the machine's load average.
 5. projection: the wall time of a 1e7-design study on 64 cores, from the measured
    cost per design per worker and the measured parallel efficiency.
 
@@ -28,6 +28,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import tempfile
 import time
 from collections.abc import Callable
@@ -59,17 +60,18 @@ MOTORS = (Motor(ROD, R=5e-3, G=24e9, nu=0.31, mu=0.2, preload=0.05),
 #: (motor, x0, load): two rotors at 8 points of the rod, under 1 mN.
 DESIGNS = [(m, float(x), 1e-3) for m in MOTORS for x in np.linspace(-0.016, -0.0002, 8)]
 K, HARD = 1e-6, 5e9
-#: The study of the scaling figure: 24 x 20 designs, 24 chunks of 20.
+#: The study of the scaling figure: 48 x 20 designs, 12 chunks of 80 (the client writes
+#: ~30 ms per chunk here: small chunks would time the client, not the workers).
 SCALING_TOML = """
 [study]
 name = "bench"
-block = 20
+block = 80
 [design]
 load = 1e-3
 [axes.x0]
 start = -0.016
 stop = -0.0002
-num = 24
+num = 48
 [axes.preload]
 start = 0.02
 stop = 0.5
@@ -170,40 +172,47 @@ def speeds(repeat: int) -> dict[str, object]:
            "batch_ms_per_design": 1e3 * t["batch"] / len(cases)}
     print("speeds: thrust-speed curve per contact " + ", ".join(
         f"{n}: {per[n]:.1f} ms" for n in counts)
-          + f" ({slope[0]:.3f} ms per speed, linear); the kernel's design "
+          + f" (least-squares slope {slope[0]:.3f} ms per speed); the kernel's design "
           f"{res['batch_ms_per_design']:.1f} ms ~ a curve of "
           f"{res['batch_ms_per_design'] / slope[0]:.0f} speeds")
     return res
 
 
 def scaling(repeat: int) -> dict[str, float]:
+    from contextlib import ExitStack
+
     from distributed import Client, LocalCluster
 
     from core.motor.study import run_study, spec_from_toml
     from core.motor.study.run import local_cluster_options
 
     spec = spec_from_toml(SCALING_TOML)
+    warm = spec_from_toml(SCALING_TOML.replace("num = 48", "num = 2")
+                          .replace("num = 20", "num = 2"))
     out: dict[str, float] = {}
-    with tempfile.TemporaryDirectory() as tmp:
-        for workers in (1, 2):
-            with LocalCluster(**local_cluster_options(workers, "1GiB")) as cluster, \
-                    Client(cluster) as client:
-                warm = spec_from_toml(SCALING_TOML.replace("num = 24", "num = 2")
-                                      .replace("num = 20", "num = 2"))
-                run_study(warm, Path(tmp) / f"warm{workers}", client=client)
-                best = math.inf
-                for r in range(repeat):
-                    run = run_study(spec, Path(tmp) / f"w{workers}-{r}", client=client)
-                    best = min(best, run.seconds)
-            out[f"seconds_{workers}"] = best
-            out[f"designs_per_second_per_worker_{workers}"] = spec.size / best / workers
+    best = {1: math.inf, 2: math.inf}
+    with tempfile.TemporaryDirectory() as tmp, ExitStack() as stack:
+        clients = {}
+        for workers in (1, 2):  # both clusters up, warmed, then timed in turn
+            cluster = stack.enter_context(LocalCluster(**local_cluster_options(workers, "1GiB")))
+            clients[workers] = stack.enter_context(Client(cluster))
+            run_study(warm, Path(tmp) / f"warm{workers}", client=clients[workers])
+        load = os.getloadavg()[0]
+        for r in range(repeat):
+            for workers, client in clients.items():
+                run = run_study(spec, Path(tmp) / f"w{workers}-{r}", client=client)
+                best[workers] = min(best[workers], run.seconds)
+    for workers in (1, 2):
+        out[f"seconds_{workers}"] = best[workers]
+        out[f"designs_per_second_per_worker_{workers}"] = spec.size / best[workers] / workers
     out["strong_scaling"] = out["seconds_1"] / out["seconds_2"]
     out["designs"] = spec.size
-    print(f"scaling: {spec.size} designs in chunks of {spec.block}: 1 worker "
-          f"{out['seconds_1']:.1f} s ({out['designs_per_second_per_worker_1']:.0f} designs/s "
-          f"per worker), 2 workers {out['seconds_2']:.1f} s "
-          f"({out['designs_per_second_per_worker_2']:.0f} designs/s per worker): "
-          f"strong scaling {out['strong_scaling']:.2f}x")
+    out["load_average"] = load
+    print(f"scaling: {spec.size} designs in chunks of {spec.block} (load average {load:.1f} "
+          f"on {os.cpu_count()} CPUs): 1 worker {out['seconds_1']:.1f} s "
+          f"({out['designs_per_second_per_worker_1']:.0f} designs/s per worker), 2 workers "
+          f"{out['seconds_2']:.1f} s ({out['designs_per_second_per_worker_2']:.0f} designs/s "
+          f"per worker): strong scaling {out['strong_scaling']:.2f}x")
     return out
 
 
