@@ -23,7 +23,7 @@ def readout_rows(c: Contact) -> list[tuple[str, str]]:
         ("τ₀ … π − τ₀", f"{c.tau0:.4f} … {c.tau_end:.4f} rad"),
         ("τ₁ (stick disc vanishes)", "none (ψ ≤ 1)" if math.isnan(c.tau1)
          else f"{c.tau1:.4f} rad"),
-        ("T_imp / (μ P_imp)", f"{c.impulse_ratio:.5f}"),
+        ("T_imp / (μ P_imp)", f"{c.impulse_ratio:.5g}"),  # (5 digits, at psi = 1e12 too)
     ]
     sc = c.scales
     if sc is not None:

@@ -32,7 +32,7 @@ TITLE = "Check a DEM code: LAMMPS and yours against the exact solution"
 INTRO = (
     "The paper's loading as a test of a discrete-element tangential contact model: the "
     "lower sphere driven along an oblique, oscillating path, the upper one held. The "
-    "black curve is the exact T/T₀ of the case, the dashed ones the Coulomb bound ±μP/T₀; "
+    "thick grey curve is the exact T/T₀ of the case, the dashed ones the Coulomb bound ±μP/T₀; "
     "the coloured ones LAMMPS' tangential models on the same loading. Run the case in "
     "your own code, upload its force history on the held sphere as a CSV with columns "
     "`tau` (rad), `T` (T/T₀, along the drive) and `P` (P/P₀), and see it scored and drawn "

@@ -1172,3 +1172,12 @@ def test_reset_and_the_physical_inputs_clear_a_refusal_message() -> None:
     assert controls.psi_slider.error
     controls.physical_box.value = True
     assert controls.psi_slider.error == ""
+
+
+def test_the_impulse_ratio_keeps_its_digits_at_large_psi() -> None:
+    """The readout said T_imp / (mu P_imp) = 0.00000 at psi = 1e12 (it decays as
+    psi^(-1/2), Fig. 8): five significant digits at any psi."""
+    c = Contact(1e12, math.pi / 6)
+    rows = dict(data.readout_rows(c))
+    assert float(rows["T_imp / (μ P_imp)"]) == pytest.approx(c.impulse_ratio, rel=1e-4)
+    assert c.impulse_ratio < 1e-5
