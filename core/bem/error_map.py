@@ -148,3 +148,44 @@ def beta_threshold(rows: list[MapRow], level: float = 0.01) -> float:
         if e0 < level <= e1:
             return b0 + (level - e0) * (b1 - b0) / (e1 - e0)
     return math.inf
+
+
+def read_csv(path: str | Path) -> list[MapRow]:
+    """The rows written by ``write_csv``."""
+    with open(path, newline="") as fh:
+        out = []
+        for d in csv.DictReader(fh):
+            kw = {k: (v if k == "label" else int(v) if k in ("coarse", "fine") else float(v))
+                  for k, v in d.items()}
+            out.append(MapRow(**kw))
+        return out
+
+
+def markdown(rows: list[MapRow]) -> str:
+    """The map as a Markdown table: each figure on the fine grid with its grid estimate
+    (+- |fine - coarse|)."""
+
+    def pm(v: float, g: float, fmt: str = ".2g") -> str:
+        return "-" if math.isnan(v) else f"{v:{fmt}} +- {g:.1g}"
+
+    head = ("| pair | nu | beta | T err. vs referee at nu=beta=0 (T0) | T err. vs closed "
+            "form (T0) | impulse ratio change | dissipation ratio - 1 | stick radius err. "
+            "(a*) |")
+    lines = [head, "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(
+            f"| {r.label} | {r.nu:.3f} | {r.beta:+.3f} | "
+            f"{pm(r.worst_T_model, r.worst_T_model_grid)} | "
+            f"{pm(r.worst_T_error, r.worst_T_error_grid)} | "
+            f"{pm(r.impulse_model, r.impulse_model_grid)} | "
+            f"{pm(r.dissipation_model - 1, r.dissipation_model_grid)} | "
+            f"{pm(r.stick_error, r.stick_error_grid)} |")
+    return "\n".join(lines) + "\n"
+
+
+if __name__ == "__main__":
+    import sys
+
+    table = read_csv(sys.argv[1])
+    print(markdown(table))
+    print(f"|beta| at which the T error passes 1 % of T0: {beta_threshold(table):.3f}")
