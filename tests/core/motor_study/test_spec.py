@@ -130,3 +130,13 @@ def test_the_example_specs_load() -> None:
     for path in sorted(EXAMPLES.glob("*.toml")):
         spec = load_spec(path)
         assert spec.size >= 1 and math.prod(spec.chunk_shape) <= spec.block
+
+
+def test_the_scheduler_comes_from_the_argument_or_the_environment(monkeypatch) -> None:
+    from core.motor.study.run import scheduler_address
+
+    monkeypatch.delenv("DASK_SCHEDULER_ADDRESS", raising=False)
+    assert scheduler_address(None) is None  # an embedded LocalCluster
+    monkeypatch.setenv("DASK_SCHEDULER_ADDRESS", "tcp://10.0.0.5:8786")
+    assert scheduler_address(None) == "tcp://10.0.0.5:8786"
+    assert scheduler_address("tcp://127.0.0.1:9000") == "tcp://127.0.0.1:9000"
