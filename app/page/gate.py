@@ -4,9 +4,10 @@ A page load's HTML costs the server CPU (a session and its shell,
 and Panel's rendering of the page: `app.page.guard.serve_page`), most of it on the event
 loop that serves every open session.  A script fetching the page in a loop would keep
 the process busy and slow every lecture on it.  `PAGES` gives each client address a
-burst of page loads refilled at a steady rate; past it, Panel's authorization hook
-(`authorize`, ``pn.config.authorize_callback``, run before the session is made)
-redirects the client to `BusyPage`, which answers 429 with a short page that opens the
+burst of page loads refilled at a steady rate; past it, or once the address has no page
+build left (`app.page.guard.BUILDS`: its page would only show a note), Panel's
+authorization hook (`authorize`, ``pn.config.authorize_callback``, run before the
+session is made) redirects the client to `BusyPage`, which answers 429 with a short page that opens the
 explorer at the same link again once the address may load a page.  A refusal costs a
 few ms, spread over two small requests.
 
@@ -49,16 +50,21 @@ BUSY_PATH = f"{APP_PATH}/busy"
 
 def authorize(user: Any, path: str) -> bool | str:
     """Panel's authorization callback: True while the client's address has page loads
-    left (`PAGES`), else the URL of `BusyPage` for the link it asked for.  Panel runs it
-    for each page request, with the request's session context as current document,
-    before the session is made."""
+    left (`PAGES`) and a page build (`app.page.guard.BUILDS`, not taken here: the
+    page's explorer takes it), else the URL of `BusyPage` for the link it asked for,
+    to open again once both are there.  Panel runs it for each page request, with the
+    request's session context as current document, before the session is made."""
+    from app.page import guard
+
     request = pn.state.curdoc.session_context.request
     client = str(request.remote_ip)
-    if PAGES.allow(client):
+    building = guard.BUILDS.retry_after(client)
+    if building <= 0.0 and PAGES.allow(client):
         return True
     path = path.rstrip("/")
     prefix = path[: -len(APP_PATH)] if path.endswith(APP_PATH) else ""
-    query = urlencode({"after": math.ceil(PAGES.retry_after(client)),
+    after = max(building, PAGES.retry_after(client))
+    query = urlencode({"after": max(1, math.ceil(after)),
                        "next": link(getattr(request, "uri", "") or "", prefix)})
     return f"{prefix}{BUSY_PATH}?{query}"
 

@@ -91,8 +91,10 @@ def build_page(query: Mapping[str, Any]) -> tuple[Explorer, pn.Column]:
 #: The page builds of this server process, per client address: a build is the costliest
 #: work of a page load, on a worker thread (`fill`), which the sessions already open share the
 #: interpreter with, so a client loading pages in a loop would slow every lecture on
-#: its process; past its bucket a client gets `refusal_note` in its page instead of the
-#: explorer, which costs little (``python -m benchmarks.app.page_load`` times both).
+#: its process; past its bucket a client's page loads are sent to the busy page before
+#: any session is made (`app.page.gate.authorize`), and a page loaded before the bucket
+#: ran out gets `refusal_note` instead of the explorer, which costs little
+#: (``python -m benchmarks.app.page_load`` times both).
 #: `CLASS_SIZE` at once: a class behind one address (a
 #: school's NAT) opening the page; then one every 4 s: that class reloading now and then.
 BUILDS = AddressLimit(burst=float(CLASS_SIZE), rate=0.25)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import logging
 import math
 import sys
+import urllib.error
 import urllib.request
 
 import pytest
@@ -184,20 +185,58 @@ def test_the_limit_forgets_idle_clients_and_stays_bounded() -> None:
     assert len(limit._buckets) <= 10
 
 
-def test_a_client_past_its_page_builds_gets_the_short_page(served, monkeypatch) -> None:  # noqa: F811
-    from bokeh_client import REFUSED
+def test_a_page_loaded_before_its_clients_builds_ran_out_gets_the_short_page(
+        served, monkeypatch) -> None:  # noqa: F811
+    """A page whose HTML was served while its address had a build left, but whose
+    explorer would be built once they are spent (a class loading the page at once), gets
+    the short note in place of the explorer."""
+    import asyncio
+
+    from bokeh_client import REFUSED, TOKEN, Tab
+    from tornado.httpclient import AsyncHTTPClient
 
     url, server = served
     monkeypatch.setattr(app.page.guard, "BUILDS", AddressLimit(burst=2, rate=1e-6))
+    before = {s.id for s in server.get_sessions("/main")}
+    with urllib.request.urlopen(url, timeout=60) as r:  # (the HTML: builds left)
+        token = TOKEN.search(r.read().decode()).group(1)
+    visit(url)
+    visit(url)  # (the address's builds spent)
+
+    async def late() -> None:
+        tab = Tab(url, AsyncHTTPClient())
+        try:
+            await tab.load(token)
+        finally:
+            tab.close()
+
+    with pytest.raises(LookupError, match=REFUSED):
+        asyncio.run(late())
+    (refused,) = [s for s in server.get_sessions("/main") if s.id not in before
+                  and "Too many pages" in " ".join(str(getattr(m, "text", ""))
+                                                   for m in s.document.models)]
+    texts = " ".join(str(getattr(m, "text", "")) for m in refused.document.models)
+    assert "Too many pages were opened from your network" in texts
+    assert "Please reload this page in" in texts
+
+
+def test_a_client_past_its_page_builds_is_sent_to_the_busy_page(served,  # noqa: F811
+                                                                monkeypatch) -> None:
+    """Past its address's page builds a page load is redirected to the busy page (429,
+    opening the visitor's link again once a build is there) before any session is made:
+    its page would only show a note."""
+    url, server = served
+    monkeypatch.setattr(app.page.guard, "BUILDS", AddressLimit(burst=2, rate=0.1))
     visit(url)
     visit(url)
     before = {s.id for s in server.get_sessions("/main")}
-    with pytest.raises(LookupError, match=REFUSED):
-        visit(url)
-    texts = " ".join(str(getattr(m, "text", "")) for m in new_session(server, before)
-                     .document.models)
-    assert "Too many pages were opened from your network" in texts
-    assert "Please reload this page in" in texts
+    with pytest.raises(urllib.error.HTTPError) as refused:
+        urllib.request.urlopen(url + "?psi=3", timeout=60)
+    assert refused.value.code == 429
+    assert refused.value.url.split("?")[0] == url + "/busy"
+    assert 1 <= int(refused.value.headers["Retry-After"]) <= 10  # (a build every 10 s)
+    assert "url=/main?psi=3'" in refused.value.read().decode()
+    assert {s.id for s in server.get_sessions("/main")} <= before
 
 
 def test_behind_a_proxy_the_client_is_the_last_forwarded_hop() -> None:
