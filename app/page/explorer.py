@@ -13,10 +13,12 @@ comes from `core` through the features.
 from __future__ import annotations
 
 import html
+import io
 
 import panel as pn
 import param
 
+from app.contact import lesson
 from app.contact.state import CONTACT_INPUTS, ExplorerState
 from app.contact.view import ContactView
 from app.dem.view import DemCard
@@ -76,6 +78,10 @@ class Explorer(param.Parameterized):
             self.motor_card.collapsed = False
         #: each plot's name and description, and the live region (`app.page.describe`)
         self.describer = Describer(self.contact, self.state)
+        #: the contact as a lesson file that plays without a server (`app.contact.lesson`)
+        self.lesson_download = pn.widgets.FileDownload(
+            callback=self.lesson_file, filename="zharii_lesson.html",
+            label="Download this lesson (plays offline)", color="primary", width=310)
 
     # ---------------------------------------------------------------- messages
 
@@ -165,6 +171,14 @@ class Explorer(param.Parameterized):
             self._url_query = query
             self.url_writer.write(query=[[k, v] for k, v in query.items()])
 
+    # ------------------------------------------------------------------ lesson
+
+    def lesson_file(self) -> io.StringIO:
+        """The lesson file of the contact on screen (`app.contact.lesson.lesson_html`), for
+        the download button (made on the click; named after the contact)."""
+        self.lesson_download.filename = lesson.file_name(self.state)
+        return io.StringIO(lesson.lesson_html(self.state))
+
     # -------------------------------------------------------------------- page
 
     def view(self) -> pn.Column:
@@ -177,7 +191,8 @@ class Explorer(param.Parameterized):
         return layout.page(self.contact, self.message,
                            [self.contact.fig6_card, self.methods.view(), self.motor_card,
                             self.dem], self.describer.descriptions,
-                           self.describer.announcer, [self.url_writer])
+                           self.describer.announcer, [self.url_writer],
+                           lesson=self.lesson_download)
 
     def attach(self, shell: pn.Column, page: pn.Column | None = None) -> pn.Column:
         """Show `page` (default: `view()`) in the served `shell` (`app.page.guard.serve_shell`),

@@ -233,7 +233,8 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
          cards: list[pn.viewable.Viewable],
          descriptions: Mapping[str, pn.viewable.Viewable] | None = None,
          announcer: pn.viewable.Viewable | None = None,
-         unseen: Sequence[pn.viewable.Viewable] = ()) -> pn.Column:
+         unseen: Sequence[pn.viewable.Viewable] = (),
+         lesson: pn.viewable.Viewable | None = None) -> pn.Column:
     """The explorer's page: a header, the controls in a sidebar, the two spheres with the
     animation's controls beside it, the other scenes beside or below them (a plain Panel
     layout: a template's header, modal and theming tripled the server's work per page
@@ -242,7 +243,8 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
     below the scenes (Fig. 6 in full, Methods, Motor); `descriptions` the plots' names
     and descriptions for a screen reader (by `app.page.describe.PLOT_NAMES`' keys),
     `announcer` the live region that announces a change of phase, `unseen` components
-    with nothing to show (out of sight: the URL's writer)."""
+    with nothing to show (out of sight: the URL's writer), `lesson` the button that
+    downloads the contact as a lesson file (under the CSV downloads)."""
     ui = contact.controls
     descriptions = descriptions or {}
     sidebar = [
@@ -255,6 +257,7 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
         ui.log_box,
         ui.physical_card,
         pn.Row(ui.downloads["traction"], ui.downloads["impulse"]),
+        *([lesson] if lesson is not None else []),
         keyboard_card(),
         play_key(contact),
     ]
