@@ -27,7 +27,7 @@ from app.kit.widgets import LabelledCheckbox, shortened
 from app.methods import MethodsScene
 from app.motor import URL_PARAMS as MOTOR_URL_PARAMS
 from app.motor import MotorScene
-from app.page import layout, presentation, url
+from app.page import layout, presentation, student, url
 from app.page.describe import Describer
 from core import Contact
 
@@ -188,11 +188,14 @@ class Explorer(param.Parameterized):
             return presentation.presentation(self.contact, self.message,
                                              self.describer.descriptions,
                                              self.describer.announcer, [self.url_writer])
+        if self.view_name == student.VIEW:
+            return student.student(self.contact, self.message, self.describer.descriptions,
+                                   self.describer.announcer, [self.url_writer])
         return layout.page(self.contact, self.message,
                            [self.contact.fig6_card, self.methods.view(), self.motor_card,
                             self.dem], self.describer.descriptions,
                            self.describer.announcer, [self.url_writer],
-                           lesson=self.lesson_download)
+                           teaching=[self.lesson_download, student.link()])
 
     def attach(self, shell: pn.Column, page: pn.Column | None = None) -> pn.Column:
         """Show `page` (default: `view()`) in the served `shell` (`app.page.guard.serve_shell`),

@@ -234,7 +234,7 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
          descriptions: Mapping[str, pn.viewable.Viewable] | None = None,
          announcer: pn.viewable.Viewable | None = None,
          unseen: Sequence[pn.viewable.Viewable] = (),
-         lesson: pn.viewable.Viewable | None = None) -> pn.Column:
+         teaching: Sequence[pn.viewable.Viewable] = ()) -> pn.Column:
     """The explorer's page: a header, the controls in a sidebar, the two spheres with the
     animation's controls beside it, the other scenes beside or below them (a plain Panel
     layout: a template's header, modal and theming tripled the server's work per page
@@ -243,8 +243,9 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
     below the scenes (Fig. 6 in full, Methods, Motor); `descriptions` the plots' names
     and descriptions for a screen reader (by `app.page.describe.PLOT_NAMES`' keys),
     `announcer` the live region that announces a change of phase, `unseen` components
-    with nothing to show (out of sight: the URL's writer), `lesson` the button that
-    downloads the contact as a lesson file (under the CSV downloads)."""
+    with nothing to show (out of sight: the URL's writer), `teaching` the ways to the
+    class's forms of the contact (under the CSV downloads: the lesson file, the student
+    view)."""
     ui = contact.controls
     descriptions = descriptions or {}
     sidebar = [
@@ -257,7 +258,7 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
         ui.log_box,
         ui.physical_card,
         pn.Row(ui.downloads["traction"], ui.downloads["impulse"]),
-        *([lesson] if lesson is not None else []),
+        *teaching,
         keyboard_card(),
         play_key(contact),
     ]

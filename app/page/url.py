@@ -22,9 +22,11 @@ from app.kit.style import VISUALLY_HIDDEN_CSS
 from app.kit.texts import WrittenHTML, pairs_json
 from app.motor import PREFIX as MOTOR_PREFIX
 from app.page.presentation import VIEW
+from app.page.student import VIEW as STUDENT
 
-#: The views a link may ask for: '' (the full page) and the one-screen presentation.
-VIEWS = ("", VIEW)
+#: The views a link may ask for: '' (the full page), the one-screen presentation and the
+#: student view.
+VIEWS = ("", VIEW, STUDENT)
 
 
 @dataclass
@@ -64,7 +66,8 @@ def view_of(raw: str) -> tuple[str, list[str]]:
     """The view a link asks for and, for an unknown one, the message saying so."""
     if raw in VIEWS:
         return raw, []
-    return "", [f"view = {raw!r} is unknown (known: {VIEW}); the full page is shown"]
+    return "", [f"view = {raw!r} is unknown (known: {VIEW}, {STUDENT}); the full page is "
+                "shown"]
 
 
 def join(contact: dict[str, str], motor: dict[str, str], view: str) -> dict[str, str]:

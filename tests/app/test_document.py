@@ -1155,7 +1155,7 @@ def test_the_view_is_chosen_by_the_url_and_kept_in_it() -> None:
     assert ex.contact.spheres.badge.glyph.text_font_size == "26pt"
     ex = Explorer(query={"view": "<b>x</b>"})
     assert ex.view_name == "" and ex.messages == [
-        "view = '<b>x</b>' is unknown (known: present); the full page is shown"]
+        "view = '<b>x</b>' is unknown (known: present, student); the full page is shown"]
     assert "&lt;b&gt;" in ex.message.object  # shown as text
 
 
