@@ -178,7 +178,8 @@ class StartUp:
 def thrust_curve(psi: float, tau0: float, n: int = CURVE_POINTS, *, springs: int = SPRINGS,
                  steps: int = STEPS) -> PchipInterpolator:
     """r(v) as a monotone (PCHIP) interpolant of the MDR's thrust-speed curve at n speeds
-    from 0 to the full-slip speed; r = -1 beyond (the curve is flat there)."""
+    from 0 to the full-slip speed; r = -1 beyond (the curve is flat there). (The start-up
+    runs on ``start_up_curve``, refined towards its operating speed.)"""
     curve = thrust_speed_curve(psi, tau0, n, springs=springs, steps=steps)
     return PchipInterpolator(curve.v, curve.thrust_ratio, extrapolate=True)
 
