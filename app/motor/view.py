@@ -51,6 +51,7 @@ from app.motor.fields import (
     softer_hardness,
 )
 from app.motor.figures import MotorFigures
+from app.motor.map_view import MapCard
 from app.motor.state import URL_PARAMS, MotorState, decode
 
 #: Inputs whose change needs only the job (not the closed-form drawing).
@@ -77,6 +78,7 @@ class MotorScene(pn.viewable.Viewer):
         self._requests = 0
         self._closed = False
         self._widgets()
+        self.design_map = MapCard(self.state)  # the design map, built when opened
         self.figures.rod_figure.on_event(Tap, self._on_tap)
         self.state.param.watch(self._on_state, [p for p in URL_PARAMS if "preset" not in p])
         self.state.param.watch(self._on_presets, ["rod_preset", "rotor_preset"])
@@ -145,7 +147,7 @@ class MotorScene(pn.viewable.Viewer):
         plots = [pn.pane.Bokeh(fig, sizing_mode="stretch_width",
                                styles={"flex": "1 1 480px", "min-width": "0"})
                  for fig in self.figures.figures]
-        return pn.FlexBox(controls, *plots, sizing_mode="stretch_width")
+        return pn.FlexBox(controls, *plots, self.design_map.card, sizing_mode="stretch_width")
 
     # -------------------------------------------------------------- inputs
 
@@ -342,6 +344,7 @@ class MotorScene(pn.viewable.Viewer):
         """The session ended: drop the waiting job; ask for nothing more."""
         self._closed = True
         RUNNER.cancel(self)
+        self.design_map.close()
 
     # -------------------------------------------------------------- URL and CSV
 
