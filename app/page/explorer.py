@@ -18,6 +18,7 @@ import io
 import panel as pn
 import param
 
+from app.bem import BemCard
 from app.contact import lesson
 from app.contact.state import CONTACT_INPUTS, ExplorerState
 from app.contact.view import ContactView
@@ -58,6 +59,9 @@ class Explorer(param.Parameterized):
         self.contact = ContactView(self.state)
         self.methods = MethodsScene()
         self.dem = DemCard()  # (a contact of its own: the DEM test cases)
+        self.bem = BemCard(self.contact.shown, self.state.tau)  # (built when first opened)
+        self.contact.param.watch(lambda e: self.bem.update(e.new, self.state.tau), "shown")
+        self.state.param.watch(lambda e: self.bem.update(self.contact.shown, e.new), "tau")
         self.methods.update_contact(self.contact.shown)
         self.contact.param.watch(lambda e: self.methods.update_contact(e.new), "shown")
         self.motor: MotorScene | None = None  # built when its card is first opened
@@ -193,7 +197,7 @@ class Explorer(param.Parameterized):
                                    self.describer.announcer, [self.url_writer])
         return layout.page(self.contact, self.message,
                            [self.contact.fig6_card, self.methods.view(), self.motor_card,
-                            self.dem], self.describer.descriptions,
+                            self.dem, self.bem], self.describer.descriptions,
                            self.describer.announcer, [self.url_writer],
                            teaching=[self.lesson_download, student.link()])
 
@@ -212,5 +216,6 @@ class Explorer(param.Parameterized):
     def close(self, session_context) -> None:
         """The session ended: stop the Methods and Motor runs."""
         self.methods.close()
+        self.bem.close()
         if self.motor is not None:
             self.motor.close()
