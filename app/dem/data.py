@@ -115,13 +115,21 @@ def read_upload(data: object) -> History:
     """The history in an uploaded file's bytes `data`: at most `MAX_UPLOAD_BYTES`,
     UTF-8 text, a CSV with columns tau, T, P (`core.dem_check.vectors.parse_history`,
     at most `MAX_UPLOAD_ROWS` rows). ValueError saying what is wrong and where."""
+    text = upload_text(data, "a header row tau,T,P and the rows of one contact")
+    header, columns = parse_history(text, source=SOURCE, max_rows=MAX_UPLOAD_ROWS)
+    return History(columns["tau"], columns["T"], columns["P"], header)
+
+
+def upload_text(data: object, needs: str) -> str:
+    """An uploaded file's bytes `data` as text: at most `MAX_UPLOAD_BYTES`, not empty
+    (`needs`: what it must hold, said when it is), UTF-8 without control characters.
+    ValueError saying what is wrong and where."""
     if not isinstance(data, bytes):
         raise ValueError("upload one CSV file")
     if len(data) > MAX_UPLOAD_BYTES:
         raise ValueError(too_big(len(data)))
     if not data.strip():
-        raise ValueError(f"{SOURCE} is empty: it needs a header row tau,T,P and the rows "
-                         "of one contact")
+        raise ValueError(f"{SOURCE} is empty: it needs {needs}")
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError as err:
@@ -132,8 +140,7 @@ def read_upload(data: object) -> History:
         line = text.count("\n", 0, bad.start()) + 1
         raise ValueError(f"{SOURCE} is not a text CSV (line {line} holds the control "
                          f"character {ord(bad.group()):#04x})")
-    header, columns = parse_history(text, source=SOURCE, max_rows=MAX_UPLOAD_ROWS)
-    return History(columns["tau"], columns["T"], columns["P"], header)
+    return text
 
 
 def too_big(size: int, max_bytes: int = MAX_UPLOAD_BYTES) -> str:

@@ -1,7 +1,9 @@
 """The "Check a DEM code" card: `DemCard()`, a collapsed card whose content is built when
-it is first opened.
+it is first opened, in two tabs under a keyboard-operable tab list (`app.kit.a11y.TabList`,
+as the page's curve tabs): "The paper's loading" (below) and "Impacts" (Chung & Ooi's
+impact tests, `app.dem.impacts_view.ImpactsTab`, built when that tab is first opened).
 
-Inside: a case of `core.dem_check` and LAMMPS' models to overlay; one figure with the
+In the first: a case of `core.dem_check` and LAMMPS' models to overlay; one figure with the
 exact T(tau), the Coulomb bounds, LAMMPS' precomputed runs and the visitor's history
 (named sources `dem_exact`, `dem_lammps`, `dem_upload`, updated in place); an upload box
 for a CSV (`app.dem.upload.CsvUpload`: a file over the cap is refused by the browser
@@ -21,13 +23,18 @@ import param
 from bokeh.models import ColumnDataSource
 
 from app.dem import data
+from app.dem.impacts_view import ImpactsTab
 from app.dem.state import DemState
 from app.dem.upload import CsvUpload
+from app.kit.a11y import TabList
 from app.kit.batch import held
 from app.kit.figures import fit_range, new_figure, style_figure
+from app.kit.style import TAB_ROW_CSS
 from app.kit.widgets import ERROR_STYLE, bind, shortened, text_html
 from core.dem_check import CASES, lammps
 
+#: The card's tabs.
+TAB_TITLES = ("The paper's loading", "Impacts")
 TITLE = "Check a DEM code: LAMMPS and yours against the exact solution"
 INTRO = (
     "The paper's loading as a test of a discrete-element tangential contact model: the "
@@ -72,6 +79,8 @@ class DemCard(pn.viewable.Viewer):
         }
         self.card = pn.Card(title=TITLE, collapsed=True, sizing_mode="stretch_width",
                             margin=6)
+        #: the Impacts tab, built when first opened
+        self.impacts: ImpactsTab | None = None
         self.card.param.watch(self._on_collapsed, "collapsed")
 
     def __panel__(self) -> pn.Card:
@@ -85,7 +94,30 @@ class DemCard(pn.viewable.Viewer):
     def _on_collapsed(self, event: param.parameterized.Event) -> None:
         if not event.new and not self.built:
             with held():
-                self.card.objects = self._build()
+                self.card.objects = [self._build_tabs()]
+
+    def close(self) -> None:
+        """The session ended: stop the Impacts tab's runs."""
+        if self.impacts is not None:
+            self.impacts.close()
+
+    def _build_tabs(self) -> TabList:
+        """The card's two tabs under a keyboard-operable tab list: the paper's loading
+        (built now) and the impacts (built when first opened)."""
+        self.impacts_panel = pn.Column(sizing_mode="stretch_width")
+        self.tabs = pn.Tabs((TAB_TITLES[0], pn.Column(*self._build(),
+                                                      sizing_mode="stretch_width")),
+                            (TAB_TITLES[1], self.impacts_panel), dynamic=True,
+                            sizing_mode="stretch_width", stylesheets=[TAB_ROW_CSS])
+        self.tabs.param.watch(self._on_tab, "active")
+        return TabList.for_tabs(self.tabs, list(TAB_TITLES), label="What to check",
+                                sizing_mode="stretch_width")
+
+    def _on_tab(self, event: param.parameterized.Event) -> None:
+        if event.new == 1 and self.impacts is None:
+            with held():
+                self.impacts = ImpactsTab(table_css=TABLE_CSS)
+                self.impacts_panel.objects = [self.impacts]
 
     # ------------------------------------------------------------------ build
 
