@@ -214,8 +214,9 @@ class Explorer(param.Parameterized):
         return page
 
     def close(self, session_context) -> None:
-        """The session ended: stop the Methods and Motor runs."""
+        """The session ended: stop the Methods, DEM and Motor runs."""
         self.methods.close()
+        self.dem.close()
         self.bem.close()
         if self.motor is not None:
             self.motor.close()
