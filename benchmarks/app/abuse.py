@@ -115,7 +115,8 @@ async def abuse_page_load_loop(url: str, http: AsyncHTTPClient, stop: asyncio.Ev
     """Load the page in a loop as a browser does (its HTML, its websocket, the document,
     the document-ready event, then the explorer built into it), each load as soon as
     the previous one has its explorer or its refusal, then closed; `ready` (if given) is
-    set at the first refused load, and only then are loads counted."""
+    set at the first refused load (the busy page, or a page showing the refusal note),
+    and only then are loads counted."""
     while not stop.is_set():
         s = Session(url, http, 5.0, None)
         try:
@@ -129,7 +130,7 @@ async def abuse_page_load_loop(url: str, http: AsyncHTTPClient, stop: asyncio.Ev
         finally:
             s.close()
         if ready is not None and not ready.is_set():
-            if key != "refused":
+            if not key.startswith("refused"):  # (its note, or the busy page: 429)
                 continue
             ready.set()
         counts[key] = counts.get(key, 0) + 1
