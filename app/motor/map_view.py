@@ -80,7 +80,7 @@ class DesignMap(pn.viewable.Viewer):
         merits = {merit_label(n): n for n in md.SHOWN}
 
         def select(label: str, options: dict[str, str], value: str) -> pn.widgets.Select:
-            w = pn.widgets.Select(name=label, options=options, value=value, width=230)
+            w = pn.widgets.Select(label=label, options=options, value=value, width=230)
             return w
 
         self.x_select = select("Map's x axis", axes, "x0")
@@ -89,7 +89,7 @@ class DesignMap(pn.viewable.Viewer):
         self.front_x = select("Front's x merit", merits, FRONT_DEFAULT[0])
         self.front_y = select("Front's y merit", merits, FRONT_DEFAULT[1])
         self.size_input = pn.widgets.TextInput(
-            name=f"Points per axis (at most {md.SIZE_MAX})", value=str(md.SIZE_DEFAULT),
+            label=f"Points per axis (at most {md.SIZE_MAX})", value=str(md.SIZE_DEFAULT),
             width=230)
         for w in (self.x_select, self.y_select, self.size_input):
             w.param.watch(lambda e: self.refresh(), "value")
