@@ -15,7 +15,7 @@ from typing import Any, Protocol
 
 import param
 
-from app.contact.player import Player, frame_index, frame_taus
+from app.contact.player import Player, frame_index, frame_taus, played
 from app.contact.state import ExplorerState
 from app.kit.batch import held
 from app.kit.widgets import finite
@@ -51,27 +51,35 @@ class Animation(param.Parameterized):
         self.stop_at: float | None = None
         view.state.param.watch(self._on_playing, "playing")
         view.state.param.watch(self._on_speed, "speed")
+        view.state.param.watch(self._on_period, "period")
+
+    def span(self) -> tuple[float, float]:
+        """The times played (rad): the contact on screen, or the whole period
+        (`app.contact.player.played`)."""
+        return played(self.view.shown, self.view.state.period)
 
     def step(self, seconds: float = 1 / 30) -> float:
         """Advance tau as `seconds` of animation at the current speed; wrap at the end.
 
-        Returns the new tau.  The last frame of a contact lands exactly on pi - tau0;
-        the next one starts again at tau0.  Stepping pauses a running animation.
+        Returns the new tau.  The last frame of a contact (or of the period, `span`) lands
+        exactly on its end; the next one starts again at its start.  Stepping pauses a
+        running animation.
         """
-        state, c = self.view.state, self.view.shown
+        state = self.view.state
+        lo, hi = self.span()
         state.playing = False
-        if state.tau >= c.tau_end:
-            new = c.tau0
+        if state.tau >= hi:
+            new = lo
         else:
-            dtau = state.speed * (c.tau_end - c.tau0) * seconds / CONTACT_SECONDS
-            new = min(state.tau + dtau, c.tau_end)
+            dtau = state.speed * (hi - lo) * seconds / CONTACT_SECONDS
+            new = min(state.tau + dtau, hi)
         state.tau = new
         return new
 
     def progress_of(self, tau: float) -> float:
-        """Where tau lies in the contact, in [0, 1)."""
-        c = self.view.shown
-        return min(max((tau - c.tau0) / (c.tau_end - c.tau0), 0.0), 1.0) % 1.0
+        """Where tau lies in the times played (`span`), in [0, 1)."""
+        lo, hi = self.span()
+        return min(max((tau - lo) / (hi - lo), 0.0), 1.0) % 1.0
 
     def clock_progress(self, now: float | None = None) -> float:
         """Where the browser's player is in the contact at time `now` (monotonic s), in
@@ -82,14 +90,15 @@ class Animation(param.Parameterized):
 
     def clock_tau(self, now: float | None = None) -> float:
         """The tau of the frame the browser's player shows at time `now` (monotonic s)."""
-        return float(frame_taus(self.view.shown)[frame_index(self.clock_progress(now))])
+        return float(frame_taus(self.view.shown, period=self.view.state.period)[
+            frame_index(self.clock_progress(now))])
 
     def landing(self, shown: object) -> float:
         """The tau (rad) a pause lands on: `shown`, the tau of the frame the browser showed
         at the press, when it is a finite number within the contact on screen; else (a
         report no page of this app sends, or none) the tau of the server's clock."""
-        c = self.view.shown
-        if finite(shown) and c.tau0 <= shown <= c.tau_end:
+        lo, hi = self.span()
+        if finite(shown) and lo <= shown <= hi:
             return float(shown)
         if shown is not None:
             log.debug("refused the frame's tau %.80r from the browser", shown)
@@ -118,7 +127,13 @@ class Animation(param.Parameterized):
         speed = self.view.state.speed
         self.started = (progress, time.monotonic(), speed)
         with held():
-            self.view.player.play(self.view.shown, progress, speed, CONTACT_SECONDS)
+            self.view.player.play(self.view.shown, progress, speed, CONTACT_SECONDS,
+                                  period=self.view.state.period)
+
+    def _on_period(self, event: param.parameterized.Event) -> None:
+        if self.view.state.playing:  # the same time shown, over the new span
+            self.start(self.progress_of(self.clock_tau() if event.new else
+                                        self.view.state.tau))
 
     def _on_speed(self, event: param.parameterized.Event) -> None:
         if self.view.state.playing:  # keep the current frame, change the pace

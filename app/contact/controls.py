@@ -106,8 +106,8 @@ class Controls:
         c = state.contact()
         self.tau_slider = ExactSlider(
             label="τ = ωt (rad): time", value=state.tau, start=c.tau0, end=c.tau_end,
-            step=TAU_STEP, parse=lambda text: parse_tau(text, view.shown), name="tau",
-            direct=True)
+            step=TAU_STEP, parse=lambda text: parse_tau(text, view.shown, state.period),
+            name="tau", direct=True)
         follow(self.tau_slider, state.param.tau, state.set_input)
         self.play_button = PlayButton(width=110)  # (the keyboard stays on it)
         self.play_button.param.watch(
@@ -120,6 +120,8 @@ class Controls:
         bind(self.speed_slider, state.param.speed)
         self.log_box = LabelledCheckbox.from_param(state.param.log_psi,
                                                    label="log ψ axis (to 10⁶)")
+        self.period_box = LabelledCheckbox.from_param(
+            state.param.period, label="Play the whole period: approach, contact, parting")
         options = {"(custom)": "", **{p.label: k for k, p in PRESETS.items()}}
         self.preset_select = pn.widgets.Select(label="Preset: the paper's figures",
                                                options=options, value=state.preset)

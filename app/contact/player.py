@@ -69,9 +69,21 @@ class Sprite(Protocol):
         ...
 
 
-def frame_taus(c: Contact, n: int = FRAMES_PER_CONTACT) -> np.ndarray:
-    """The n times of the frames, tau0 to pi - tau0 inclusive."""
-    return np.linspace(c.tau0, c.tau_end, n)
+#: One whole period of the drive (rad): the spheres apart, approaching, touching at
+#: tau0, parting at pi - tau0 and apart again (eq 3).
+PERIOD = (-math.pi / 2, 3 * math.pi / 2)
+
+
+def played(c: Contact, period: bool = False) -> tuple[float, float]:
+    """The times the animation plays (rad): the contact, tau0 to pi - tau0, or with
+    `period` the whole period `PERIOD`."""
+    return PERIOD if period else (c.tau0, c.tau_end)
+
+
+def frame_taus(c: Contact, n: int = FRAMES_PER_CONTACT, period: bool = False) -> np.ndarray:
+    """The n times of the frames over `played(c, period)`, both ends included (as many
+    frames for the period as for the contact: the player's budget)."""
+    return np.linspace(*played(c, period), n)
 
 
 def frame_index(progress: float, n: int = FRAMES_PER_CONTACT) -> int:
@@ -124,11 +136,13 @@ class Player:
         if any(self.script.args[name] is not model for name, model in found.items()):
             self.script.args = {**self.script.args, **found}
 
-    def play(self, c: Contact, start: float, speed: float, seconds: float) -> None:
-        """Send the frames of contact `c` and start the browser's player at progress
-        `start` in [0, 1) (profiles first: the script starts on the frames' arrival)."""
+    def play(self, c: Contact, start: float, speed: float, seconds: float,
+             period: bool = False) -> None:
+        """Send the frames of contact `c` (over the contact, or with `period` the whole
+        period) and start the browser's player at progress `start` in [0, 1) (profiles
+        first: the script starts on the frames' arrival)."""
         self._find_controls()
-        taus = frame_taus(c)
+        taus = frame_taus(c, period=period)
         self.profiles.data = {k: v.ravel() for k, v in self.traction.profiles(c, taus).items()}
         for sprite in self.sprites:
             for name, cols in sprite.drawing(c, taus).items():

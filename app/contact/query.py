@@ -94,7 +94,7 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
             except ValueError as err:
                 messages.append(str(err))
 
-    for key in ("log_psi", "physical"):
+    for key in ("log_psi", "period", "physical"):
         if key in flat:
             try:
                 values[key] = parse_flag(key, flat[key])
@@ -141,7 +141,8 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
     if "tau" in flat:
         tau0 = values.get("tau0", ExplorerState.param.tau0.default)
         try:
-            values["tau"] = parse_tau(flat["tau"], Contact(1.0, tau0))
+            values["tau"] = parse_tau(flat["tau"], Contact(1.0, tau0),
+                                      period=bool(values.get("period")))
         except ValueError as err:
             messages.append(str(err))
     elif "tau0" in values and "tau" not in values:

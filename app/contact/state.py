@@ -78,17 +78,20 @@ def parse_value(name: str, raw: str) -> float:
     return domain(name).check(name, value)
 
 
-def parse_tau(raw: str, c: Contact) -> float:
-    """A time tau (rad) inside the contact of `c`, [tau0, pi - tau0]; ValueError else,
-    quoting the contact's range."""
-    where = f"the contact [{c.tau0:.4g}, {c.tau_end:.4g}] (tau0 = {c.tau0:.4g})"
+def parse_tau(raw: str, c: Contact, period: bool = False) -> float:
+    """A time tau (rad) inside the contact of `c`, [tau0, pi - tau0], or with `period`
+    inside the whole period [-pi/2, 3 pi/2] (the animation plays it); ValueError else,
+    quoting that range."""
+    lo, hi = (APP_DOMAIN["tau"].lo, APP_DOMAIN["tau"].hi) if period else (c.tau0, c.tau_end)
+    where = (f"the period [{lo:.4g}, {hi:.4g}]" if period else
+             f"the contact [{lo:.4g}, {hi:.4g}] (tau0 = {c.tau0:.4g})")
     try:
         tau = parse_value("tau", raw)
     except ValueError:
         if isinstance(number_text(raw), str):  # (not a number at all: say so)
             raise ValueError(f"tau must be a real number in {where}, got {raw!r}") from None
         tau = math.inf
-    if not c.tau0 <= tau <= c.tau_end:
+    if not lo <= tau <= hi:
         raise ValueError(f"tau = {raw} is outside {where}")
     return tau
 
@@ -124,8 +127,8 @@ CONTACT_INPUTS = ("psi", "tau0", "mu", "nu", "drive", "theta", "physical", *SI_K
 
 #: Query parameters written to / read from the URL, in this order.  With physical = 1
 #: the URL holds the physical inputs (SI units), and psi and tau0 follow from them.
-QUERY_KEYS = ("psi", "tau0", "mu", "nu", "tau", "log_psi", "preset", "drive", "theta",
-              "physical", "material", *SI_KEYS)
+QUERY_KEYS = ("psi", "tau0", "mu", "nu", "tau", "log_psi", "period", "preset", "drive",
+              "theta", "physical", "material", *SI_KEYS)
 
 
 def parse_flag(name: str, raw: str) -> bool:
@@ -187,6 +190,9 @@ class ExplorerState(param.Parameterized):
                        doc="current time omega t (rad)")
     log_psi = param.Boolean(default=False, doc="log psi axis on the impulse curve")
     playing = param.Boolean(default=False, doc="animation running")
+    period = param.Boolean(default=False, doc=(
+        "the animation plays the whole period (-pi/2 to 3 pi/2: the spheres approach, "
+        "touch, part and separate), tau may lie outside the contact; else the contact"))
     speed = param.Number(default=1.0, **bounds("speed"), doc="contacts per 4 s")
     preset = param.String(default=DEFAULT_PRESET,
                           doc="name of the last preset loaded, '' once edited")
@@ -234,11 +240,13 @@ class ExplorerState(param.Parameterized):
         """What the state must change for its values to be those of contact `c` (its
         `contact()`), each that differs: with SI inputs psi and tau0 follow from them;
         with drive = 'angle' psi follows from theta, mu and nu, else theta (degrees)
-        from psi, mu and nu (eq 23); tau is kept inside the contact."""
+        from psi, mu and nu (eq 23); tau is kept inside the contact (unless the whole
+        period plays: `period`)."""
         fixes = {"psi": c.psi, "tau0": c.tau0} if self.physical else {"psi": c.psi}
         if self.physical or self.drive == "psi":
             fixes["theta"] = drive_angle(c.psi, self.mu, self.nu)
-        fixes["tau"] = min(max(self.tau, c.tau0), c.tau_end)
+        if not self.period:
+            fixes["tau"] = min(max(self.tau, c.tau0), c.tau_end)
         return {k: v for k, v in fixes.items() if getattr(self, k) != v}
 
     def correct(self, c: Contact) -> bool:
@@ -251,7 +259,7 @@ class ExplorerState(param.Parameterized):
                 setattr(self, k, v)
         return bool(fixes)
 
-    @param.depends(*CONTACT_INPUTS, "tau", watch=True)
+    @param.depends(*CONTACT_INPUTS, "tau", "period", watch=True)
     def _follow_inputs(self) -> None:
         """The state corrects itself after any change of the contact's inputs or of tau
         (a link, a preset, SI inputs, the Motor card's contact): `corrections`.  A
@@ -342,6 +350,8 @@ class ExplorerState(param.Parameterized):
         q = {k: repr(float(getattr(self, k))) for k in keys}
         if self.log_psi:
             q["log_psi"] = "1"
+        if self.period:
+            q["period"] = "1"
         if self.preset:
             q["preset"] = self.preset
         if angle:

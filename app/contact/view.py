@@ -34,7 +34,7 @@ from app.contact.formulas import FORMULAS_TAG, formulas
 from app.contact.impulse import ImpulseScene
 from app.contact.multiples import SmallMultiples
 from app.contact.notes import NOTES
-from app.contact.player import Player
+from app.contact.player import Player, played
 from app.contact.readout import Readout
 from app.contact.spheres import SpheresScene
 from app.contact.state import CONTACT_INPUTS, PRESETS, ExplorerState
@@ -77,6 +77,8 @@ class ContactView(param.Parameterized):
                              lambda taus: [self.controls.tau_slider.text(t) for t in taus],
                              sprites=[self.spheres])
         self.animation = Animation(self)
+        state.param.watch(lambda e: self.controls.tau_slider.set_range(
+            *played(self.shown, e.new), self.state.tau), "period")
         self.impulse.set_log(state.log_psi)
         #: the curve scenes share one card, one tab each; a scene's figure is built when
         #: its tab is first opened
@@ -162,7 +164,7 @@ class ContactView(param.Parameterized):
                 else:
                     self._stale.add(scene)
             self._show_family()
-            self.controls.tau_slider.set_range(c.tau0, c.tau_end, tau)
+            self.controls.tau_slider.set_range(*played(c, self.state.period), tau)
             self.readout.show(readout_rows(c))
             self._show_formulas(c, tau)
             self.traction.caption.text = caption(c, tau)

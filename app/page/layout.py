@@ -269,7 +269,7 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
                              stylesheets=[phone_fit_css(contact.spheres.figure)]),
                    "spheres", descriptions),
         pn.Row(ui.play_button, ui.step_button), ui.tau_slider, ui.speed_slider,
-        title="The two spheres (Fig. 2)", flex="0 0 auto")
+        ui.period_box, title="The two spheres (Fig. 2)", flex="0 0 auto")
     main = [
         message,
         *([announcer] if announcer is not None else []),

@@ -65,3 +65,37 @@ def test_the_ends_of_the_contact_are_frames(playing) -> None:
     assert view.state.playing
     press(view, c.tau0)
     assert not view.state.playing and view.state.tau == c.tau0
+
+
+def test_the_whole_period_plays_the_spheres_apart_and_the_contact_in_cores_phases() -> None:
+    """`period`: the frames run from -pi/2 to 3 pi/2 (as many as for the contact: the
+    player's budget), the spheres apart outside the contact (the gap h - H sin tau > 0,
+    no force) and the contact's frames in core's phases; a pause may land in the gap,
+    and Step wraps at the period's end."""
+    from app.contact.spheres import drawing
+    from app.contact.state import ExplorerState
+
+    view = ContactView(ExplorerState(period=True))
+    c = view.shown
+    taus = frame_taus(c, period=True)
+    assert taus[0] == -math.pi / 2 and taus[-1] == 3 * math.pi / 2
+    assert taus.size == frame_taus(c).size
+    inside = (taus >= c.tau0) & (taus <= c.tau_end)
+    assert inside.any() and (~inside).any()
+    d = drawing(c, taus)
+    lower, upper = d["spheres_lower"]["y"], d["spheres_upper"]["y"]
+    apart = lower.max(axis=1) < upper.min(axis=1)
+    assert apart[~inside].all() and not apart[inside].any()
+    assert (d["spheres_forces"]["label"][~inside] == "").all()
+    assert (c.phase(taus[inside]) > 0).all() and (c.phase(taus[~inside]) == 0).all()
+    view.state.playing = True
+    assert len(view.player.frames.data["tau"]) == taus.size
+    assert view.player.frames.data["tau"][0] == -math.pi / 2
+    gap = float(taus[10])  # (before the contact: the spheres approaching)
+    press(view, gap)
+    assert not view.state.playing and view.state.tau == gap  # not clamped into the contact
+    assert view.controls.tau_slider.start == -math.pi / 2
+    view.state.tau = 3 * math.pi / 2
+    assert view.animation.step() == -math.pi / 2
+    view.state.period = False  # the contact alone again: tau back inside it
+    assert c.tau0 <= view.state.tau <= c.tau_end and view.controls.tau_slider.start == c.tau0

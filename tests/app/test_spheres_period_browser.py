@@ -113,3 +113,23 @@ def test_the_forces_are_painted_to_one_scale_with_their_coulomb_bound(browser, u
     assert labels == [f"P = {float(c.normal_force(1.2)):.3g} P₀",
                       f"T = {float(c.tangential_force(1.2)):+.3g} T₀"]
     page.close()
+
+
+def test_the_whole_period_plays_the_spheres_approaching_and_parting(browser, url) -> None:
+    """The animation looped over the contact only: the spheres never parted in motion.
+    With the whole period ticked, Play shows frames in the gap, the spheres apart (the
+    lower one's top below the upper one's bottom), and frames of the contact."""
+    page, _ = open_explorer(browser, url)
+    page.get_by_label("Play the whole period: approach, contact, parting").check()
+    page.wait_for_function("() => __slider('tau').start < -1.5", timeout=20_000)
+    page.get_by_role("button", name="▶ Play").click()
+    c = Contact(math.sqrt(2) + 1, math.pi / 6)
+    apart = ("(t0) => { const t = __col('spheres_forces', 'tau')[0];"
+             " const lo = Math.max(...__col('spheres_lower', 'y'));"
+             " const up = Math.min(...__col('spheres_upper', 'y'));"
+             " return t < t0 && lo < up; }")
+    page.wait_for_function(apart, arg=c.tau0, timeout=20_000)
+    page.wait_for_function("([a, b]) => { const t = __col('spheres_forces', 'tau')[0];"
+                           " return a < t && t < b; }", arg=[c.tau0, c.tau_end],
+                           timeout=20_000)
+    page.close()
