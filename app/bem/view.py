@@ -120,9 +120,9 @@ class BemCard(pn.viewable.Viewer):
         options = {f"{r.label} (a few seconds)": r for r in data.RESOLUTIONS}
         big = data.COMMAND_LINE_ONLY
         options[f"{big.label} (command line only)"] = big
-        self.resolution = pn.widgets.Select(name="Resolution", options=options,
+        self.resolution = pn.widgets.Select(label="Resolution", options=options,
                                             value=data.RESOLUTIONS[0], width=380)
-        self.compute_button = pn.widgets.Button(name="Compute", button_type="primary",
+        self.compute_button = pn.widgets.Button(label="Compute", color="primary",
                                                 width=120)
         self.compute_button.on_click(lambda _: self.compute())
         self.resolution.param.watch(lambda _: self._show_status(), "value")
