@@ -1,13 +1,13 @@
 """Page loads per client address, refused before any session is made.
 
-A page load's HTML costs the server CPU (a session and its shell,
-and Panel's rendering of the page: `app.page.guard.serve_page`), most of it on the event
-loop that serves every open session.  A script fetching the page in a loop would keep
-the process busy and slow every lecture on it.  `PAGES` gives each client address a
-burst of page loads refilled at a steady rate; past it, or once the address has no page
-build left (`app.page.guard.BUILDS`: its page would only show a note), Panel's
-authorization hook (`authorize`, ``pn.config.authorize_callback``, run before the
-session is made) redirects the client to `BusyPage`, which answers 429 with a short page that opens the
+A page load's HTML costs the server CPU (a session and its shell, and Panel's rendering
+of the page: `app.page.guard.serve_page`), most of it on the event loop that serves
+every open session.  A script fetching the page in a loop would keep the process busy
+and slow every lecture on it.  `PAGES` gives each client address a burst of page loads
+refilled at a steady rate; past it, or once the address has no page build left
+(`app.page.guard.BUILDS`: its page would only show a note), Panel's authorization hook
+(`authorize`, ``pn.config.authorize_callback``, run before the session is made)
+redirects the client to `BusyPage`, which answers 429 with a short page that opens the
 explorer at the same link again once the address may load a page.  A refusal costs a
 few ms, spread over two small requests.
 
