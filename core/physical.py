@@ -29,9 +29,12 @@ from core.validation import DOMAIN, check_param, is_flat, shown
 
 SQRT8 = 2.0 * math.sqrt(2.0)
 
-#: The |beta| above which ``beta_warning`` warns that Goodman's approximation may be poor
-#: (docs/physics.md, section 11.1).
-BETA_WARN = 0.2
+#: The |beta| above which ``beta_warning`` warns that Goodman's approximation may be poor,
+#: from the 3D boundary-element referee's map of the model's error (``core.bem``,
+#: docs/bem.md): on the paper's loading T(tau)'s error grows as beta^2 and passes 1 % of
+#: T0 at |beta| = 0.43 for mu = 0.2, and near 0.26 for mu = 0.1 (estimated from one
+#: coarse run); this bound holds for mu from 0.1 up.
+BETA_WARN = 0.25
 
 
 def equivalent_pair(R: float, G: float, nu: float, R2: float | None = None,
@@ -111,8 +114,8 @@ def beta_warning(beta: float) -> str | None:
         return None
     return (f"Dundurs' beta = {beta:.3g}: the bodies are elastically dissimilar enough "
             f"(|beta| > {BETA_WARN:g}) that Goodman's approximation, which neglects the "
-            "coupling of normal and tangential tractions, may be in error by more than a "
-            "few per cent")
+            "coupling of normal and tangential tractions, may be in error by more than 1 % "
+            "of T0 in T(tau) (the 3D boundary-element referee's map, docs/bem.md)")
 
 
 def second_body(R2: object, G2: object, nu2: object) -> tuple[float | None, ...]:

@@ -13,7 +13,7 @@ The gzip stream is stored, not compressed: float64 curves hardly compress, and
 compressing them costs server CPU on every move.  Measured on the columns of one psi
 move (T(τ) and the traction profile, 21.9 kB of float64): Bokeh's default level 2 takes
 0.42-0.47 ms for 24.1-24.4 kB of base64, level 0 takes 0.05 ms for 29.5 kB (+21 %
-bytes, -0.4 ms of server CPU per move; `python benchmarks/app/wire_cost.py`).  The
+bytes, -0.4 ms of server CPU per move; `python -m benchmarks.app.wire_cost`).  The
 stored stream is written here (`stored_gzip`: the gzip header, the bytes in stored
 deflate blocks, their CRC-32 and length; RFCs 1951 and 1952) without setting up a
 compressor for each column (zlib allocates ~256 kB of state per call); for a column of

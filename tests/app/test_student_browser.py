@@ -58,7 +58,7 @@ def test_high_contrast_passes_axes_contrast_rule(browser, url) -> None:
 
 
 def test_the_full_page_leads_to_the_student_view_and_back(browser, url) -> None:
-    page, console = open_explorer(browser, url + "?psi=3")
+    page, _ = open_explorer(browser, url + "?psi=3")
     page.get_by_role("button", name="Student view: plain words, activities").click()
     page.wait_for_function("() => location.search.includes('view=student')", timeout=20_000)
     page.get_by_text("The symbols").wait_for(timeout=30_000)

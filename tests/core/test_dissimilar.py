@@ -86,7 +86,7 @@ def test_dundurs_beta() -> None:
     assert dundurs_beta(1.0, 0.0, 1e13, 0.3) == pytest.approx(0.5, rel=1e-12)  # rigid on nu=0
     assert Contact.from_physical(**SI, **SECOND).scales.beta == pytest.approx(float(ref))
     assert beta_warning(BETA_WARN) is None
-    assert "Goodman" in beta_warning(-0.25)
+    assert "Goodman" in beta_warning(-0.26) and "docs/bem.md" in beta_warning(0.3)
     assert Contact.from_physical(**SI, G2=1e3, nu2=0.0).scales.beta_warning is not None
 
 
