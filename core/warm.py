@@ -4,8 +4,8 @@ numba compiles a kernel on its first call and caches it on disk (``NUMBA_CACHE_D
 ``__pycache__`` next to the sources): seconds the first time, far less from the cache
 (time ``python -m core.warm`` with an empty ``NUMBA_CACHE_DIR``, then again).
 ``warm()`` makes that first call with tiny inputs for the closed form, ``warm_methods()``
-for the methods of ``core.numerics`` and the moving rotor of ``core.motor`` (the Methods
-and Motor cards), so that a server can load the closed form before it takes its first page and the
+for the methods of ``core.numerics``, the moving rotor of ``core.motor`` and its batched
+design kernel (the Methods and Motor cards), so that a server can load the closed form before it takes its first page and the
 methods in another process meanwhile, and an image can do both at build time
 (``python -m core.warm [closed-form | methods]``: both by default).
 """
@@ -31,14 +31,17 @@ def warm() -> None:
 
 
 def warm_methods() -> None:
-    """One tiny run of each method of ``core.numerics`` and of the moving rotor."""
+    """One tiny run of each method of ``core.numerics``, of the moving rotor and of the
+    batched design kernel (the Motor card's design map)."""
     from core import numerics
+    from core.motor.designs import contact_merits
     from core.motor.moving_rotor import moving_rotor
 
     c = Contact(2.0, 0.3)
     for name in numerics.METHODS:
         numerics.solve(name, c, 8)
     moving_rotor(2.0, 0.3, [0.0, 0.1], springs=8, steps=16)
+    contact_merits([2.0], [0.3], [0.1], springs=8, steps=16)
 
 
 def warm_all() -> None:
