@@ -31,7 +31,7 @@ from app.kit.batch import held
 from app.kit.figures import fit_range, new_figure, style_figure
 from app.kit.jobs import RUNNER
 from app.kit.progress import JobProgress
-from app.kit.widgets import ERROR_STYLE, bind, shortened, text_html
+from app.kit.widgets import ERROR_STYLE, bind, follow, shortened, text_html
 from core.dem_check.impact_cases import TESTS
 from core.dem_check.lammps import MODELS
 
@@ -51,6 +51,11 @@ INTRO = (
 
 #: The names of the tests in the chooser.
 TEST_OPTIONS = {f"Test {n}: {t.title}": n for n, t in TESTS.items()}
+#: Each quantity's figure title and axis label.
+TITLES = {"tangential_cor": "Tangential restitution of the centre",
+          "rebound_spin": "Rebound spin", "rebound_angle": "Rebound angle of the contact point"}
+AXES = {"tangential_cor": "vx' / vx", "rebound_spin": "ω' (rad/s)",
+        "rebound_angle": "angle (deg)"}
 #: The colours of the reference and of the published values.
 EXACT_COLOR, PUBLISHED_COLOR, EXPERIMENT_COLOR = "black", "#333333", "#000000"
 
@@ -91,12 +96,12 @@ class ImpactsTab(pn.viewable.Viewer):
         }
         s = self.state
         self.test_select = pn.widgets.Select(label="Test", options=TEST_OPTIONS, value=s.test,
-                                             width=330)
+                                             width=440)
         bind(self.test_select, s.param.test)
         self.material_select = pn.widgets.Select(label="Material",
                                                  options=material_options(s.test),
                                                  value=s.material, width=170)
-        bind(self.material_select, s.param.material)
+        follow(self.material_select, s.param.material)  # (shown with its test's options)
         self.model_select = pn.widgets.Select(label="LAMMPS model", options=list(MODELS),
                                               value=s.model, width=200)
         bind(self.model_select, s.param.model)
@@ -148,8 +153,7 @@ class ImpactsTab(pn.viewable.Viewer):
     # ---------------------------------------------------------------- figure
 
     def _figure(self, q: str, legend: bool):
-        fig = new_figure(impacts.LABELS[q].split(" (")[0].capitalize(), "incidence θ (deg)",
-                         impacts.LABELS[q], height=300)
+        fig = new_figure(TITLES[q], "incidence θ (deg)", AXES[q], height=300)
         src = self.sources
 
         def named(text: str) -> dict:
@@ -183,8 +187,8 @@ class ImpactsTab(pn.viewable.Viewer):
         """The test and material's reference, published values, LAMMPS and note."""
         s = self.state
         with held():
-            self.material_select.options = material_options(s.test)
-            self.material_select.value = s.material
+            self.material_select.param.update(options=material_options(s.test),
+                                              value=s.material)
             self.sources["exact"].data = impacts.columns(impacts.exact_curves(s.test,
                                                                               s.material))
             for series in ("published", "experiment"):
