@@ -168,6 +168,7 @@ class ExactSlider(pn.viewable.Viewer):
         self._digits = digits
         self._doc: Document | None = None  # the served document (`follow_browser`)
         self._due = value  # the browser's last move, for `_apply_due`
+        self._moving = False  # (a move of the slider is being applied: `moved`)
         self._scheduled = False
         self._slider = (DirectSlider if direct else LabelledSlider)(
             label=label, value=value, start=self.start, end=self.end, step=step,
@@ -204,7 +205,18 @@ class ExactSlider(pn.viewable.Viewer):
         # everything the move changes (this box, the plots, the readout) goes to the
         # browser in one message
         with held():
-            self.value = event.new
+            self.moved(event.new)
+
+    def moved(self, value: float) -> None:
+        """Set `value` as a move of the slider: its range is not narrowed (a range
+        widened to show a value typed beyond it stays while the thumb is dragged back,
+        so that the thumb stays under the pointer; it is the slider's own again at the
+        next value typed or set)."""
+        self._moving = True
+        try:
+            self.value = value
+        finally:
+            self._moving = False
 
     def follow_browser(self, doc: Document) -> None:
         """Take the slider's moves in the served document `doc` as Bokeh delivers them.
@@ -247,7 +259,7 @@ class ExactSlider(pn.viewable.Viewer):
         self._scheduled = False
         await asyncio.sleep(0)
         with set_curdoc(self._doc), unlocked():
-            self.value = self._due
+            self.moved(self._due)
 
     def _on_entry(self, attr: str, old: str, new: str) -> None:
         try:
@@ -268,8 +280,9 @@ class ExactSlider(pn.viewable.Viewer):
     def _show_value(self) -> None:
         v = self.value
         # the slider's range: its own, widened to show a value typed beyond it, and its
-        # own again once the value is back inside (`_show_range` follows)
-        lo, hi = self._range
+        # own again once a value typed or set is back inside (`_show_range` follows); a
+        # move of the slider only widens it (`moved`)
+        lo, hi = (self.start, self.end) if self._moving else self._range
         start, end = min(lo, v), max(hi, v)
         with held():  # (the box is a Bokeh model: `held_set`)
             if (start, end) != (self.start, self.end):
