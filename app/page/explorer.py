@@ -38,6 +38,14 @@ URL_DELAY_S = 0.4  # the URL follows the parameters this long after the last cha
 FOLLOWED = ("physical", "drive", "psi", "tau0", "mu", "nu")
 
 
+def following_note(psi: float, tau0: float, mu: float, nu: float) -> str:
+    """The banner's words while the plots follow the Motor card's rotor: why the contact's
+    inputs changed, and how to get one's own back."""
+    return (f"The plots above show the rotor's contact at x₀ (ψ = {psi:.4g}, τ₀ = "
+            f"{tau0:.4g} rad, μ = {mu:.3g}, ν = {nu:.3g}); untick \"Show the rotor's "
+            "contact\" in the Motor card to get your own contact back.")
+
+
 class Explorer(param.Parameterized):
     """One user's page: the features, the URL, the messages."""
 
@@ -133,6 +141,7 @@ class Explorer(param.Parameterized):
         elif self._own is not None:
             own, self._own = self._own, None
             self._set_contact(own)
+            self.show_messages(self.messages)
 
     def _follow(self, contact: tuple[float, float] | None) -> None:
         """The scenes above show the rotor's contact (psi, tau0 at x0; its mu, nu), when
@@ -148,6 +157,7 @@ class Explorer(param.Parameterized):
                                 f"contact at x₀: {err}"])
             return
         self._set_contact(dict(physical=False, drive="psi", psi=psi, tau0=tau0, mu=mu, nu=nu))
+        self.show_messages([*self.messages, following_note(psi, tau0, mu, nu)])
 
     def _set_contact(self, values: dict) -> None:
         self._following = True

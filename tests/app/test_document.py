@@ -894,11 +894,15 @@ def test_the_motor_card_is_built_when_opened_and_drives_the_scenes_when_asked(
     m = ex.motor.state
     assert (ex.state.psi, ex.state.tau0, ex.state.mu, ex.state.nu) == (psi, tau0, m.mu, m.nu)
     assert_sources_match_core(ex)
+    # the banner says why the contact's inputs changed, and how to get one's own back
+    assert ex.message.visible and "the rotor&#x27;s contact at x₀" in ex.message.object
+    assert f"ψ = {psi:.4g}" in ex.message.object
     ex.motor.state.x0 = ex.motor.state.x0 / 2  # and follow it
     assert ex.motor.contact[0] != psi and ex.state.psi == ex.motor.contact[0]
     ex.follow_motor.value = False  # the explorer's own contact again
     assert (ex.state.psi, ex.state.tau0, ex.state.mu, ex.state.nu) == own
     assert_sources_match_core(ex)
+    assert not ex.message.visible
     ex.follow_motor.value = True
     ex.contact.controls.psi_slider.value = 3.0  # the user takes the contact over
     assert not ex.follow_motor.value and ex.state.psi == 3.0
