@@ -222,8 +222,10 @@ class ForceScene(CurveScene):
 
     def _make_figures(self) -> list:
         figs = super()._make_figures()
+        # (over the contact's own thick curve, on its layer: the family's member of the
+        # psi on screen, Fig. 7a's 0.8 or 7b's 6.46, was hidden under it)
         figs[0].multi_line("xs", "ys", source=self.family, color="color", line_width=2,
-                           line_alpha=0.7, legend_field="label")
+                           line_alpha=0.7, legend_field="label", level=DATA_LEVEL)
         lean(figs[0])
         return figs
 

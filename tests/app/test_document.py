@@ -1185,3 +1185,21 @@ def test_the_impulse_ratio_keeps_its_digits_at_large_psi() -> None:
     rows = dict(data.readout_rows(c))
     assert float(rows["T_imp / (μ P_imp)"]) == pytest.approx(c.impulse_ratio, rel=1e-4)
     assert c.impulse_ratio < 1e-5
+
+
+def test_fig7s_family_is_painted_over_the_contacts_own_curve() -> None:
+    """Fig. 7a's psi = 0.8 (7b's 6.46) is both the contact on screen and a member of the
+    family: its legend entry's curve lay under the thick black curve, on the glyph layer
+    below the overlay the contact's curves are painted on."""
+    from bokeh.models import GlyphRenderer, MultiLine
+
+    ex = Explorer(query={"preset": "fig7a"})
+    fig = ex.contact.force.figure
+    fig = fig if hasattr(fig, "renderers") else fig.children[0]
+    renderers = [r for r in fig.renderers if isinstance(r, GlyphRenderer)]
+    family = next(r for r in renderers if isinstance(r.glyph, MultiLine))
+    curve = next(r for r in renderers if r.data_source is ex.contact.force.source
+                 and getattr(r.glyph, "y", None) == "T")
+    assert family.level == curve.level
+    assert renderers.index(family) > renderers.index(curve)  # painted after it
+    assert 0.8 in [float(lbl.split("= ")[1]) for lbl in family.data_source.data["label"]]
