@@ -90,7 +90,7 @@ class DesignMap(pn.viewable.Viewer):
         self.front_y = select("Front's y merit", merits, FRONT_DEFAULT[1])
         self.size_input = pn.widgets.TextInput(
             label=f"Points per axis (at most {md.SIZE_MAX})", value=str(md.SIZE_DEFAULT),
-            width=230)
+            width=230, css_classes=["motor-map-size"])
         for w in (self.x_select, self.y_select, self.size_input):
             w.param.watch(lambda e: self.refresh(), "value")
         self.merit_select.param.watch(lambda e: self.show(), "value")
