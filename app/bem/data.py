@@ -60,8 +60,10 @@ MAX_GRID = max(r.grid for r in RESOLUTIONS)
 MAX_STEPS = max(r.steps for r in RESOLUTIONS)
 #: A resolution offered to show where the command line takes over (refused here).
 COMMAND_LINE_ONLY = Resolution(64, 200)
-#: How many runs a card keeps.
+#: How many runs a card keeps (at most about 2 MB each: 32 across, 100 steps).
 CACHE_SIZE = 4
+#: The fields are kept for drawing, in single precision (half the memory).
+FIELD_DTYPE = np.float32
 
 
 @dataclass(frozen=True)
@@ -115,9 +117,10 @@ class Referee:
     """One run of the referee: its times ``tau`` (rad), T / T0 (``T``; ``Ty``
     transverse), the equal-area stick radius (``stick``, a*), the element centres along
     one axis (``centres``, a*), and per time (first axis) the pressure ``p`` / p* and the
-    traction ``qx``, ``qy`` / (mu p*) on the held body, indexed [time, ix, iy], with the
-    stuck elements (``stuck``); the closed form ``closed`` (`core.Contact`), the worst
-    |T - T_closed| / T0 over the contact and the run's wall time (s)."""
+    traction ``qx``, ``qy`` / (mu p*) on the held body (``FIELD_DTYPE``), indexed
+    [time, ix, iy], with the stuck elements (``stuck``); the closed form ``closed``
+    (`core.Contact`), the worst |T - T_closed| / T0 over the contact and the run's wall
+    time (s)."""
 
     key: RunKey
     tau: Array
@@ -142,7 +145,7 @@ def compute(key: RunKey) -> Referee:
                     snapshots=tuple(float(t) for t in loading.tau))
     m = run.grid.size
     shape = (len(run.tau), m, m)
-    p, qx, qy = np.zeros(shape), np.zeros(shape), np.zeros(shape)
+    p, qx, qy = (np.zeros(shape, dtype=FIELD_DTYPE) for _ in range(3))
     stuck = np.zeros(shape, dtype=bool)
     for k, t in enumerate(loading.tau):
         state = run.snapshots.get(float(t))
@@ -238,10 +241,11 @@ def field_columns(run: Referee, tau: float) -> dict[str, dict]:
 
 
 def force_columns(run: Referee, points: int = 400) -> dict[str, dict]:
-    """T / T0 of the referee on its times (``referee``: tau, T) and of the closed form
-    (``closed``: tau, T on ``Contact.tau_grid(points)``)."""
+    """T / T0 of the referee on its times (``referee``: tau, T, and dT = T - T_closed)
+    and of the closed form (``closed``: tau, T on ``Contact.tau_grid(points)``)."""
     tau = run.closed.tau_grid(points)
-    return {"referee": {"tau": run.tau, "T": run.T},
+    return {"referee": {"tau": run.tau, "T": run.T,
+                        "dT": run.T - run.closed.tangential_force(run.tau)},
             "closed": {"tau": tau, "T": run.closed.tangential_force(tau)}}
 
 

@@ -23,12 +23,20 @@ from functools import cache, partial
 import numpy as np
 import panel as pn
 import param
-from bokeh.models import ColorBar, ColumnDataSource, HoverTool, Label, LinearColorMapper, Span
+from bokeh.models import (
+    ColorBar,
+    ColumnDataSource,
+    HoverTool,
+    Label,
+    LinearColorMapper,
+    PrintfTickFormatter,
+    Span,
+)
 from bokeh.palettes import RdBu11, Viridis256
 
 from app.bem import data
 from app.kit.batch import held
-from app.kit.figures import fit_range, new_figure, style_figure
+from app.kit.figures import fit_range, new_figure, place_legend, style_figure
 from app.kit.jobs import RUNNER
 from app.kit.progress import JobProgress
 from app.kit.widgets import ERROR_STYLE, text_html
@@ -54,7 +62,7 @@ MAP_NOTE = (
     "shown (its ν; β = 0 for identical spheres).")
 #: Colours: the referee, the closed form, the stick zone.
 REFEREE, CLOSED, STICK = "#D55E00", "#000000", "#ffffff"
-FIELD_SIZE = 330  # px, each field figure (square)
+FIELD_SIZE = 280  # px, each field figure's height (its width: and a colour bar; a phone's 390 px)
 
 
 @cache
@@ -85,7 +93,7 @@ class BemCard(pn.viewable.Viewer):
             "arrows": {"x0": [], "y0": [], "x1": [], "y1": []},
             "closed_arrows": {"x0": [], "y0": [], "x1": [], "y1": []},
             "circles": {"x": [], "y": [], "r": []},
-            "T": {"tau": [], "T": []},
+            "T": {"tau": [], "T": [], "dT": []},
             "T_closed": {"tau": [], "T": []},
             "map_nu": {}, "map_sweep": {}, "map_pairs": {},
             "map_current": {"nu": [], "err": []},
@@ -148,6 +156,7 @@ class BemCard(pn.viewable.Viewer):
             self.message, self.status, self.readout,
             pn.FlexBox(*(pn.pane.Bokeh(f) for f in self.fields), sizing_mode="stretch_width"),
             pn.pane.Bokeh(self.force_figure, sizing_mode="stretch_width"),
+            pn.pane.Bokeh(self.diff_figure, sizing_mode="stretch_width"),
             pn.FlexBox(*(pn.pane.Bokeh(f) for f in self.map_figures),
                        sizing_mode="stretch_width"),
             pn.pane.Markdown(MAP_NOTE, sizing_mode="stretch_width",
@@ -182,14 +191,24 @@ class BemCard(pn.viewable.Viewer):
                          "T / T₀", height=300)
         fig.line("tau", "T", source=self.sources["T_closed"], color=CLOSED, line_width=4,
                  alpha=0.35, legend_label="closed form")
-        fig.line("tau", "T", source=self.sources["T"], color=REFEREE, line_width=1.5,
-                 legend_label="referee (boundary elements)")
-        fig.scatter("tau", "T", source=self.sources["T"], color=REFEREE, size=3)
+        fig.scatter("tau", "T", source=self.sources["T"], color=REFEREE, size=4,
+                    legend_label="referee (boundary elements)")
         self.tau_mark = Span(location=self.tau, dimension="height", line_color="#777777",
                              line_dash="dotted", line_width=1.5)
         fig.add_layout(self.tau_mark)
         fig.legend.location = "bottom_left"
         style_figure(fig)
+        diff = new_figure("The referee's T minus the closed form's", "τ = ωt (rad)",
+                          "(T − T_closed) / T₀", height=220, x_range=fig.x_range)
+        diff.line("tau", "dT", source=self.sources["T"], color=REFEREE, line_width=1.5)
+        diff.scatter("tau", "dT", source=self.sources["T"], color=REFEREE, size=3)
+        self.diff_mark = Span(location=self.tau, dimension="height", line_color="#777777",
+                              line_dash="dotted", line_width=1.5)
+        diff.add_layout(self.diff_mark)
+        diff.yaxis.formatter = PrintfTickFormatter(format="%.1e")
+        style_figure(diff)
+        diff.title.text_font_size = "12pt"
+        self.diff_figure = diff
         return fig
 
     def _map_figures(self) -> list:
@@ -200,8 +219,8 @@ class BemCard(pn.viewable.Viewer):
         for title, x_label, parts in (
                 ("Identical bodies: the error over ν", "ν", (("nu", "identical bodies"),)),
                 ("Dissimilar bodies: the error over β", "Dundurs' β",
-                 (("sweep", f"β sweep at ν = {SWEEP_NU:g}"),
-                  ("pairs", "pairs of core.PRESETS")))):
+                 (("sweep", f"β sweep (ν = {SWEEP_NU:g})"),
+                  ("pairs", "core.PRESETS pairs")))):
             fig = new_figure(title, x_label, "worst |T − T_closed| / T₀", y_axis_type="log",
                              height=340, tools="pan,wheel_zoom,reset,save")
             xs = np.concatenate([columns[p]["x"] for p, _ in parts])
@@ -214,8 +233,9 @@ class BemCard(pn.viewable.Viewer):
                 fig.segment("x", "lo", "x", "hi", source=src, color=colour, line_width=1.5)
                 markers.append(fig.scatter("x", "err", source=src, color=colour, size=8,
                                            marker=marker, legend_label=label))
+                short = label.split(" (")[0]
                 fig.scatter("x", "model", source=src, line_color=colour, fill_color=None,
-                            size=8, marker=marker, legend_label=f"{label}: vs ν = β = 0")
+                            size=8, marker=marker, legend_label=f"{short}: vs ν = β = 0")
             fig.add_tools(HoverTool(renderers=markers, tooltips=[
                 ("pair", "@label"), ("error", "@err{0.0e} T₀"), ("vs ν = β = 0",
                                                                  "@model{0.0e} T₀")]))
@@ -226,8 +246,6 @@ class BemCard(pn.viewable.Viewer):
             mark = Span(location=0.0, dimension="height", line_color="#777777",
                         line_width=2, line_alpha=0.7)
             fig.add_layout(mark)
-            fig.legend.location = "bottom_right"
-            fig.legend.label_text_font_size = "10pt"
             figs.append(fig)
             if x_label == "ν":
                 self.nu_mark = mark
@@ -235,7 +253,8 @@ class BemCard(pn.viewable.Viewer):
                             size=16, color="#777777", legend_label="the contact shown")
         for fig in figs:
             style_figure(fig)
-            fig.legend.label_text_font_size = "10pt"
+            place_legend(fig, fig.legend[0], "below")
+            fig.legend.update(label_text_font_size="10pt", ncols=2)
         return figs
 
     # ----------------------------------------------------------------- follow
@@ -315,6 +334,7 @@ class BemCard(pn.viewable.Viewer):
             fig = self.force_figure
             fit_range(fig.x_range, forces["closed"]["tau"], pad=0.02)
             fit_range(fig.y_range, forces["closed"]["T"], forces["referee"]["T"])
+            fit_range(self.diff_figure.y_range, forces["referee"]["dT"])
             self._shown_step = None
             self._show_fields(run)
             self._show_map_mark()
@@ -337,7 +357,7 @@ class BemCard(pn.viewable.Viewer):
             self.pt_mapper.high = high
             py = max(float(np.abs(f["referee"]["py"][0]).max()), 1e-6)
             self.py_mapper.update(low=-py, high=py)
-            self.tau_mark.location = f["readout"]["tau"]
+            self.tau_mark.location = self.diff_mark.location = f["readout"]["tau"]
             self.readout.object = readout_html(f["readout"])
 
     def _show_map_mark(self) -> None:

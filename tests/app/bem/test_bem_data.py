@@ -46,7 +46,7 @@ def test_the_run_is_core_bems(nu3) -> None:
     assert nu3.centres[1] - nu3.centres[0] == pytest.approx(2 / COARSE.grid)
     loaded = np.abs(nu3.T) > 1e-3
     ratio = nu3.qx.sum(axis=(1, 2))[loaded] / nu3.T[loaded]
-    np.testing.assert_allclose(ratio, ratio[0], rtol=1e-9)
+    np.testing.assert_allclose(ratio, ratio[0], rtol=1e-5)  # (fields kept in float32)
 
 
 def test_at_nu_0_the_referee_is_the_closed_form_within_its_discretisation(nu0) -> None:
@@ -63,14 +63,14 @@ def test_at_nu_0_the_referee_is_the_closed_form_within_its_discretisation(nu0) -
 def test_the_fields_obey_coulomb_and_the_stuck_elements_are_the_runs(nu3) -> None:
     h = nu3.centres[1] - nu3.centres[0]
     size = np.hypot(nu3.qx, nu3.qy)
-    assert (size <= nu3.p + 1e-9).all()  # |q| <= mu p (q in units mu p*)
+    assert (size <= nu3.p * (1 + 1e-6) + 1e-12).all()  # |q| <= mu p (q in mu p*)
     # the stuck elements counted as an equal-area circle are the run's stick radius
     np.testing.assert_allclose(np.sqrt(nu3.stuck.sum(axis=(1, 2)) * h * h / math.pi),
                                nu3.stick, atol=1e-12)
     k = data.step_at(nu3, 2.2)
     qy = nu3.qy[k]
     assert np.abs(qy).max() > 0.01  # Poisson's transverse traction (nu = 0.3)
-    np.testing.assert_allclose(qy[:, ::-1], -qy, atol=1e-9)  # odd in y
+    np.testing.assert_allclose(qy[:, ::-1], -qy, atol=1e-7)  # odd in y (float32)
 
 
 def test_field_columns_draw_the_run_and_the_closed_form_at_the_nearest_step(nu3) -> None:
@@ -100,6 +100,8 @@ def test_field_columns_draw_the_run_and_the_closed_form_at_the_nearest_step(nu3)
 def test_force_columns_are_the_run_and_contact_tangential_force(nu3) -> None:
     f = data.force_columns(nu3, points=200)
     np.testing.assert_array_equal(f["referee"]["T"], nu3.T)
+    np.testing.assert_array_equal(f["referee"]["dT"], nu3.T - nu3.closed.tangential_force(nu3.tau))
+    assert np.abs(f["referee"]["dT"]).max() == nu3.worst_T_error
     tau = nu3.closed.tau_grid(200)
     np.testing.assert_array_equal(f["closed"]["T"], nu3.closed.tangential_force(tau))
 
