@@ -361,7 +361,10 @@ class BemCard(pn.viewable.Viewer):
             self.readout.object = readout_html(f["readout"])
 
     def _show_map_mark(self) -> None:
+        """The contact's nu on the map (sent only when it changes)."""
         nu = self.contact.nu
+        if self.nu_mark.location == nu and self.sources["map_current"].data["nu"]:
+            return
         inside = data.NU_RANGE.contains(nu)
         self.nu_mark.location = nu
         self.sources["map_current"].data = {
@@ -369,8 +372,11 @@ class BemCard(pn.viewable.Viewer):
             "err": [data.map_at(list(error_map()), nu)] if inside else []}
 
     def _show_status(self) -> None:
-        """What the result shown is: none yet, of the previous contact, or this one's."""
+        """What the result shown is: none yet, of the previous contact, or this one's
+        (while a run is on its way, the status says so until it arrives)."""
         run, c = self.result, self.contact
+        if self.progress.busy:
+            return
         if run is None:
             text = (f"Nothing computed yet: press Compute to solve the contact shown "
                     f"({contact_text(c)}) on the referee.")

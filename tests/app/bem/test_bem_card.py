@@ -184,3 +184,19 @@ def test_a_failed_run_ends_the_progress_and_says_why(monkeypatch: pytest.MonkeyP
     assert not card.progress.busy
     assert card.message.object == "⚠ the referee could not run: out of memory"
     card.close()
+
+
+def test_a_contact_changed_while_its_run_is_on_its_way_is_said_when_it_arrives(
+        computed) -> None:
+    card = opened()
+    gate = blocked(RUNNER)
+    try:
+        card.compute()
+        card.update(OTHER, TAU)  # the status still says the run is on its way
+        assert card.progress.busy and card.status.object.startswith("computing the referee")
+    finally:
+        gate.set()
+    wait()
+    assert card.result.key.same_contact(CONTACT) and not card.progress.busy
+    assert "This result is of the previous contact" in card.status.object
+    card.close()
