@@ -6,6 +6,7 @@ non-dominated, and a click loads the design under it into the card."""
 from __future__ import annotations
 
 import math
+import threading
 
 import numpy as np
 import pytest
@@ -158,3 +159,24 @@ def test_a_click_on_the_map_loads_that_design_into_the_card(scene) -> None:
     wait()
     assert scene.motor.preload == d.y[j] and scene.x0 == pytest.approx(d.x[i] / 1e3, rel=1e-15)
     assert not m.message.visible
+
+
+def test_a_click_the_card_refuses_says_why_and_changes_nothing(scene, monkeypatch) -> None:
+    """A click on a map whose rod is longer than the card's now (the shorter rod's map
+    still computing) asks for an x0 off the rod: refused in the card's words."""
+    m = opened(scene)
+    d = m.data
+    release = threading.Event()
+    compute = md.compute
+    monkeypatch.setattr(md, "compute", lambda r: (release.wait(30), compute(r))[1])
+    scene.state.L = 10.0  # x0 = -5 mm stays on the rod; the map of L = 10 mm is asked for
+    assert m.data is d and m.progress.busy
+    try:
+        assert not m.load(d.x[0], d.y[3])  # x0 = -19.98 mm: off a 10 mm rod
+    finally:
+        release.set()
+    assert m.message.visible and "off the rod" in m.message.object
+    assert scene.state.x0 == -5.0 and scene.state.N == 0.5
+    wait()
+    assert m.data.request.size == 6 and dict(m.data.request.others)["L"] == 10.0
+    np.testing.assert_allclose(m.data.x[[0, -1]], [-9.99, 9.99], rtol=1e-15)
