@@ -4,7 +4,9 @@ A card shows a bar while its job runs on the runner (`app.kit.jobs.RUNNER`) and 
 when the outcome arrives, on every move of a slider beside it.  Hiding it with Panel's
 `visible` would make BokehJS lay the card's column out again, re-inserting its children,
 and a slider being dragged in that column would lose the pointer after the move's first
-step.  This bar is hidden by CSS (`visibility: hidden`): it keeps its box, nothing
+step (and so would a change of its CSS classes).  This bar is hidden by its host's
+style instead (`visibility: hidden`, which its own stylesheet passes on to the bar inside
+its shadow root, where Panel's stylesheet sets the bar visible): it keeps its box, nothing
 around it moves or is re-inserted, and a drag goes on.
 """
 
@@ -13,8 +15,10 @@ from __future__ import annotations
 import panel as pn
 import param
 
-#: The bar's style while it is hidden, and while it is shown.
+#: The host's style while no job runs, and while one does.
 HIDDEN, SHOWN = {"visibility": "hidden"}, {"visibility": "visible"}
+#: The bar as visible as its host (hidden from sight and from a screen reader with it).
+CSS = "progress { visibility: inherit !important; }"
 
 
 class JobProgress(pn.viewable.Viewer):
@@ -24,7 +28,8 @@ class JobProgress(pn.viewable.Viewer):
 
     def __init__(self, width: int = 200) -> None:
         super().__init__()
-        self._bar = pn.indicators.Progress(active=False, width=width, styles=HIDDEN)
+        self._bar = pn.indicators.Progress(active=False, width=width, styles=HIDDEN,
+                                           stylesheets=[CSS])
 
     def __panel__(self) -> pn.indicators.Progress:
         return self._bar

@@ -132,5 +132,9 @@ def test_a_motor_slider_follows_a_whole_drag_of_the_real_mouse(browser, url,
     # the last 105 px moved the value as far as 105 px of the track are worth
     assert last[0] - first == pytest.approx(105 * (end - start) / (box["width"] - 16),
                                             rel=0.1)
+    # and the job's bar, which kept its place, is not painted once the job has ended
+    page.wait_for_function(COMPUTED, timeout=60_000)
+    assert page.locator("progress").evaluate_all(
+        "(els) => els.map((e) => getComputedStyle(e).visibility)") == ["hidden"]
     assert errors(console) == []
     page.close()
