@@ -93,7 +93,7 @@ class Explorer(param.Parameterized):
         #: the contact as a lesson file that plays without a server (`app.contact.lesson`)
         self.lesson_download = pn.widgets.FileDownload(
             callback=self.lesson_file, filename="zharii_lesson.html",
-            label="Download this lesson (plays offline)", color="primary", width=310)
+            label="Download this lesson (works offline)", color="primary", width=310)
 
     # ---------------------------------------------------------------- messages
 

@@ -25,6 +25,7 @@ from app.contact.activities import ACTIVITIES
 from app.contact.glossary import GLOSSARY
 from app.contact.view import ContactView
 from app.kit.a11y import Landmark
+from app.kit.style import FOCUS_RING
 from app.kit.widgets import LabelledCheckbox
 from app.page import layout
 from app.page.presentation import FULL_PAGE_JS
@@ -48,6 +49,10 @@ GLOSSARY_CSS = """
        padding: 0.4em 0.6em; background: #fff; color: #000; border: 2px solid #000; }
 .term:hover .tip, .term:focus .tip { display: block; }
 """
+
+#: A Bokeh button (the page's CSS for Panel's components does not reach it) with the
+#: keyboard's ring.
+BUTTON_CSS = f".bk-btn:focus-visible {{ {FOCUS_RING} }}"
 
 #: The high-contrast setting's type (inherited into every component: black on white).
 CONTRAST_CSS = ":host(.high-contrast) { color: #000; background: #fff; }"
@@ -122,14 +127,16 @@ window.location.search = q.toString();
 
 def link() -> pn.pane.Bokeh:
     """The full page's way here: a button that opens this view, the contact kept."""
-    button = BokehButton(label="Student view: plain words, activities", width=310)
+    button = BokehButton(label="Student view: plain words, activities", width=310,
+                         stylesheets=[BUTTON_CSS])
     button.js_on_event("button_click", CustomJS(code=STUDENT_PAGE_JS))
     return pn.pane.Bokeh(button, margin=(5, 10))
 
 
 def header(contrast: LabelledCheckbox) -> Landmark:
     """The banner: the title, the high-contrast box, the way to the full page."""
-    full = BokehButton(label="All scenes and controls (expert)", width=280)
+    full = BokehButton(label="All scenes and controls (expert)", width=280,
+                       stylesheets=[BUTTON_CSS])
     full.js_on_event("button_click", CustomJS(code=FULL_PAGE_JS))
     return Landmark(object=pn.FlexBox(layout.heading(), contrast, pn.pane.Bokeh(full),
                                       align_items="center", sizing_mode="stretch_width",

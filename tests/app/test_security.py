@@ -42,6 +42,7 @@ PAYLOADS = {
     "nu": "<b id=xss-nu>nu</b>",
     "tau": "<iframe id=xss-tau src=javascript:alert('tau')></iframe>",
     "log_psi": "<details id=xss-log open ontoggle=alert('log')>",
+    "period": "<video id=xss-period src=x onerror=alert('period')>",
     "preset": "[click](javascript:alert('preset')) <a id=xss-preset href=x>a</a>",
     "physical": "<img src=x id=xss-physical onerror=alert('physical')>",
     "material": "<script id=xss-material>alert('material')</script>",
