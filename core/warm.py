@@ -5,8 +5,9 @@ numba compiles a kernel on its first call and caches it on disk (``NUMBA_CACHE_D
 (time ``python -m core.warm`` with an empty ``NUMBA_CACHE_DIR``, then again).
 ``warm()`` makes that first call with tiny inputs for the closed form, ``warm_methods()``
 for the methods of ``core.numerics``, the moving rotor of ``core.motor`` and its batched
-design kernel (the Methods and Motor cards), so that a server can load the closed form before it takes its first page and the
-methods in another process meanwhile, and an image can do both at build time
+design kernel (the Methods and Motor cards), so that a server can load the closed form
+before it takes its first page and the methods in another process meanwhile, and an image
+can do both at build time
 (``python -m core.warm [closed-form | methods]``: both by default).
 """
 
