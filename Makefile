@@ -52,15 +52,13 @@ lint: venv
 test: venv browser lammps
 	$(VENV)/bin/ruff check .
 	$(PY) -m core.warm
-	$(VENV)/bin/pytest -m "not isolated"
-	$(VENV)/bin/pytest -m isolated
+	$(VENV)/bin/pytest
 
 # Every test that needs no browser (core, numerics, the app's document, export, wire,
 # sessions and server security; not the browser tests nor the nginx replicas): ~3 min (2 min 57 s here, idle).
 test-fast: venv
 	$(VENV)/bin/ruff check .
-	$(VENV)/bin/pytest -q -m "not browser and not slow and not isolated"
-	$(VENV)/bin/pytest -q -m "isolated and not browser and not slow"
+	$(VENV)/bin/pytest -q -m "not browser and not slow"
 
 test-core: venv
 	$(VENV)/bin/pytest tests/core tests/numerics

@@ -22,11 +22,6 @@ from tornado.httpclient import AsyncHTTPClient, HTTPClientError
 from tornado.websocket import WebSocketClosedError
 
 import app.page.gate
-
-#: Run in a pytest process of their own (`make test`, `make test-fast`): after other
-#: modules of the suite in the same process, the server's access-log lines no longer
-#: reached the log (an order dependence not yet understood).
-pytestmark = pytest.mark.isolated
 from app.page.bucket import AddressLimit
 from app.page.limits import (
     ACCESS_LOGGER,
@@ -41,15 +36,42 @@ from app.page.websocket import CLOSE_CODE, OnePullHandler
 LOGGERS = (ACCESS_LOGGER, "tornado.application", "tornado.general", "bokeh", "app")
 
 
+class Records(logging.Handler):
+    """Every record that reaches a logger it is a handler of, kept once (`records`)."""
+
+    def __init__(self) -> None:
+        super().__init__(logging.INFO)
+        self.records: list[logging.LogRecord] = []
+        self._kept: set[int] = set()  # (a record reaching two of its loggers: once)
+
+    def emit(self, record: logging.LogRecord) -> None:
+        if id(record) not in self._kept:
+            self._kept.add(id(record))
+            self.records.append(record)
+
+
 @pytest.fixture
-def log(caplog):
-    """pytest's capture of the records that pass the server's log filters (the filters
-    fresh for the test: no earlier burst in them)."""
+def log():
+    """The records that pass the server's log filters (the filters fresh for the test: no
+    earlier burst in them), caught by a handler of the test's own on the root logger at
+    INFO and on every logger an abuser could fill, each at INFO (not pytest's capture,
+    whose handler's level another test or library may have set higher, nor those
+    loggers' own levels, which distributed's import sets to CRITICAL for Tornado's, nor
+    their propagation, which Bokeh turns off for its own once it logs)."""
     filters = quiet_closed_connections()
+    names = (None, *LOGGERS)
+    levels = {name: logging.getLogger(name).level for name in names}
+    records = Records()
+    for name in names:
+        logging.getLogger(name).setLevel(logging.INFO)
+        logging.getLogger(name).addHandler(records)
     try:
-        with caplog.at_level(logging.INFO):
-            yield caplog
+        yield records
     finally:
+        for name in names:
+            logging.getLogger(name).removeHandler(records)
+        for name, level in levels.items():
+            logging.getLogger(name).setLevel(level)
         for name, f in filters:
             logging.getLogger(name).removeFilter(f)
 
