@@ -40,6 +40,7 @@ from bokeh.models import (
 from bokeh.plotting import figure
 from bokeh.transform import transform
 
+from app.kit.image_export import add_image_export
 from core import Contact
 
 TOOLS = "pan,wheel_zoom,box_zoom,reset,save"
@@ -263,6 +264,7 @@ def new_figure(title: str, x_label: str, y_label: str, **kwargs):
     fig = figure(title=title, x_axis_label=x_label, y_axis_label=y_label, **kwargs)
     for tool in fig.select(type=SaveTool):  # downloads the PNG without asking for a name
         tool.filename = png_name(title)
+    add_image_export(fig)  # Save PNG 2x, 3x and SVG in the toolbar
     return fig
 
 
