@@ -57,15 +57,44 @@ $$T = -T_0 (\sin\tau - \sin\tau_0)^{3/2}$$
 }
 
 
+def _body(phase: Phase) -> list[str]:
+    """The paragraphs of phase `phase`'s equations (and the common ones in contact)."""
+    _, body = _PHASES[phase]
+    common = _COMMON if phase else ""
+    return [" ".join(block.split("\n")).strip()
+            for block in f"{body}\n{common}".split("\n\n") if block.strip()]
+
+
+def _title(phase: Phase) -> str:
+    when, _ = _PHASES[phase]
+    name = PHASE_NAMES[phase]
+    return f"{name[0].upper()}{name[1:]}" + (f" ({when})" if when else "")
+
+
+#: Inline styles (the text is the whole of the pane, wherever it is shown): every
+#: phase's equations stacked in one grid cell, the phase's own on top, the others hidden
+#: (`visibility`: not seen, not read aloud), so that the equations take the height of the
+#: tallest phase's at any width and the page under them never moves when the phase
+#: changes.
+_STACK = "display: grid; grid-template-columns: minmax(0, 1fr);"
+_CELL = "grid-area: 1 / 1; min-width: 0;"
+_SPARE = f'style="{_CELL} visibility: hidden;" aria-hidden="true"'
+
+
 def formulas(phase: int) -> str:
     """HTML (with $$...$$ math, one paragraph each) for the contact phase `phase` (a
-    core.Phase code)."""
+    core.Phase code): its name and when it holds in bold, then its equations.
+
+    The other phases' equations are there too, hidden in the same place (`_STACK`): the
+    text is as tall as with the tallest phase's (partial stick's) at any width, so a
+    change of phase (while playing, at the frame it happens) never moves what is below."""
     phase = Phase(int(phase))
-    when, body = _PHASES[phase]
-    name = PHASE_NAMES[phase]
-    title = f"{name[0].upper()}{name[1:]}" + (f" ({when})" if when else "")
-    common = _COMMON if phase else ""
-    paragraphs = [" ".join(block.split("\n")).strip()
-                  for block in f"{body}\n{common}".split("\n\n") if block.strip()]
-    return f"<p><b>{escape(title)}</b></p>" + "".join(
-        f"<p>{escape(text, quote=False)}</p>" for text in paragraphs)
+
+    def paragraphs(p: Phase) -> str:
+        return "".join(f"<p>{escape(text, quote=False)}</p>" for text in _body(p))
+
+    spares = "".join(f"<div {_SPARE}>{paragraphs(p)}</div>" for p in Phase
+                     if p != phase and _body(p))
+    return (f"<p><b>{escape(_title(phase))}</b></p>"
+            f'<div style="{_STACK}"><div style="{_CELL}">{paragraphs(phase)}</div>'
+            f"{spares}</div>")
