@@ -1,10 +1,13 @@
 """Widgets for keyboard and screen-reader users (WAI-ARIA Authoring Practices).
 
 `TabList`: the tabs pattern over a Panel `Tabs` (roles, `aria-selected`, arrows,
-Home/End, Enter/Space, a visible focus ring); `KeyShortcut`: a documented page-level key
-that clicks a button; `LiveText`: a polite live region; `Landmark`: a layout carrying an
-ARIA landmark role.  Each is Panel's public `ReactiveHTML` (its scripts run under the
-page's Content-Security-Policy); values from the browser are checked before use.
+Home/End, Enter/Space, a visible focus ring); `RadioGroup`: a choice of one among a few
+as the radio group pattern (`aria-checked`, arrows); `Disclosure` and `disclosure_card`:
+a card whose title says whether it is open (`aria-expanded`); `KeyShortcut`: a
+documented page-level key that clicks a button; `LiveText`: a polite live region;
+`Landmark`: a layout carrying an ARIA landmark role.  Each is Panel's public
+`ReactiveHTML` (its scripts run under the page's Content-Security-Policy);
+values from the browser are checked before use.
 """
 
 from __future__ import annotations
@@ -218,6 +221,147 @@ class Landmark(pn.reactive.ReactiveHTML):
         "render": _LANDMARK_SHOW, "role": _LANDMARK_SHOW, "label": _LANDMARK_SHOW}
 
     CSS = "#region { width: 100%; }"
+
+    def __init__(self, **params) -> None:
+        params["stylesheets"] = [self.CSS, *params.get("stylesheets", [])]
+        super().__init__(**params)
+
+
+#: JavaScript of `Disclosure`: the button's expanded state, chevron and title.
+_DISCLOSURE_SHOW = """
+toggle.setAttribute("aria-expanded", data.expanded ? "true" : "false");
+chevron.textContent = data.expanded ? "▾" : "▸";
+label.textContent = data.title;
+"""
+
+
+class Disclosure(pn.reactive.ReactiveHTML):
+    """The title of a collapsible card as a disclosure button (WAI-ARIA Authoring
+    Practices' disclosure pattern): a `<button>` whose `aria-expanded` says whether the
+    card is open (`expanded`); a click, Enter or Space (a button's own keys) toggles it.
+
+    Panel's `Card` draws its title as a `<button>` without `aria-expanded`, and no
+    property of Panel gives it one: `disclosure_card` makes a card whose header is
+    this button instead (Panel's own header button left out, `collapsible=False`)."""
+
+    title = param.String(default="")
+    expanded = param.Boolean(default=False)
+
+    _template = (
+        '<button id="toggle" type="button" onclick="${script(\'click\')}">'
+        '<span id="chevron" aria-hidden="true"></span><span id="label"></span></button>')
+    _scripts: ClassVar[dict[str, str]] = {
+        **dict.fromkeys(("render", "expanded", "title"), _DISCLOSURE_SHOW),
+        "click": "data.expanded = !data.expanded;",
+    }
+
+    #: As Panel's card header: the whole width, the title at the left after a chevron.
+    CSS = """
+#toggle { font: inherit; font-size: 1.05em; color: inherit; background: transparent;
+          border: none; width: 100%; text-align: left; cursor: pointer; padding: 0.25em;
+          display: flex; gap: 0.5em; align-items: baseline; }
+#chevron { display: inline-block; width: 1em; }
+""" + f"#toggle:focus-visible {{ {FOCUS_RING} }}\n"
+
+    def __init__(self, **params) -> None:
+        params["stylesheets"] = [self.CSS, *params.get("stylesheets", [])]
+        params.setdefault("sizing_mode", "stretch_width")
+        params.setdefault("margin", 0)
+        super().__init__(**params)
+
+
+def disclosure_card(*objects, title: str, collapsed: bool = True, **params) -> pn.Card:
+    """A Panel `Card` of `objects` titled `title`, opened and closed by a `Disclosure`
+    (its header: a button with `aria-expanded`), its `collapsed` and the button's
+    `expanded` kept opposite whichever changes; `params` go to the card."""
+    header = Disclosure(title=title, expanded=not collapsed)
+    card = pn.Card(*objects, title=title, header=header, collapsible=False,
+                   collapsed=collapsed, **params)
+    header.param.watch(lambda e: setattr(card, "collapsed", not e.new), "expanded")
+    card.param.watch(lambda e: setattr(header, "expanded", not e.new), "collapsed")
+    return card
+
+
+#: JavaScript of `RadioGroup`: one button (role "radio") per option, built when the
+#: options change; the chosen one `aria-checked` and the only one in the tab order.
+_RADIO_SHOW = """
+const options = Object.entries(data.options);
+if (group.children.length !== options.length
+    || options.some(([label], i) => group.children[i].textContent !== label)) {
+  group.replaceChildren(...options.map(([label, value]) => {
+    const radio = document.createElement("button");
+    radio.type = "button";
+    radio.setAttribute("role", "radio");
+    radio.dataset.value = value;
+    radio.textContent = label;
+    return radio;
+  }));
+}
+group.setAttribute("aria-label", data.label);
+const chosen = [...group.children].findIndex((r) => r.dataset.value === data.value);
+[...group.children].forEach((radio, i) => {
+  radio.setAttribute("aria-checked", i === chosen ? "true" : "false");
+  radio.tabIndex = i === Math.max(chosen, 0) ? 0 : -1;
+});
+"""
+
+#: JavaScript of `RadioGroup`: the arrows move to the next / previous option (round) and
+#: choose it; Space (a button's own key) or a click chooses the option it is on.
+_RADIO_KEYDOWN = """
+const radios = [...group.children];
+const i = radios.indexOf(event.target);
+if (i < 0) { return; }
+const n = radios.length;
+const step = {ArrowRight: 1, ArrowDown: 1, ArrowLeft: -1, ArrowUp: -1}[event.key];
+if (step != null) {
+  event.preventDefault();
+  const next = radios[(i + step + n) % n];
+  next.focus();
+  data.value = next.dataset.value;
+}
+"""
+
+_RADIO_CLICK = """
+const radio = event.target.closest("[role=radio]");
+if (radio != null) { data.value = radio.dataset.value; }
+"""
+
+
+class RadioGroup(pn.reactive.ReactiveHTML):
+    """One of `options` ({label: value}) chosen, `value`, as a row of buttons in the
+    WAI-ARIA Authoring Practices' radio group pattern: a `radiogroup` named `label` of
+    `radio` buttons, the chosen one `aria-checked="true"`; the arrows move along the
+    row and choose, and only the chosen button is a Tab stop.
+
+    Panel's `RadioButtonGroup` (BokehJS's) draws plain buttons, the chosen one only
+    coloured: a screen reader hears neither the group nor which button is pressed.
+    A value the browser sends is a string; the state it is bound to checks it
+    (`app.kit.widgets.bind`)."""
+
+    value = param.String(default="")
+    options = param.Dict(default={})
+    label = param.String(default="")
+
+    _template = ('<div id="group" onkeydown="${script(\'keydown\')}" '
+                 'onclick="${script(\'click\')}" role="radiogroup"></div>')
+    _scripts: ClassVar[dict[str, str]] = {
+        **dict.fromkeys(("render", "value", "options", "label"), _RADIO_SHOW),
+        "keydown": _RADIO_KEYDOWN,
+        "click": _RADIO_CLICK,
+    }
+
+    #: As a button group: the buttons side by side, the chosen one filled (white on
+    #: #0072B2, 5.1:1); a 3 px ring on the one the keyboard is on.
+    CSS = """
+#group { display: flex; width: 100%; }
+[role=radio] { flex: 1; font: inherit; color: #212529; background: white; cursor: pointer;
+               border: 1px solid #6c757d; padding: 0.3em 0.8em; min-height: 32px; }
+[role=radio]:first-child { border-radius: 4px 0 0 4px; }
+[role=radio]:last-child { border-radius: 0 4px 4px 0; }
+[role=radio] + [role=radio] { border-left: none; }
+[role=radio]:hover { background: #e2e6ea; }
+[role=radio][aria-checked=true] { background: #0072B2; color: white; font-weight: bold; }
+""" + f"[role=radio]:focus-visible {{ {FOCUS_RING} position: relative; z-index: 1; }}\n"
 
     def __init__(self, **params) -> None:
         params["stylesheets"] = [self.CSS, *params.get("stylesheets", [])]
