@@ -26,6 +26,7 @@ from app.contact.notes import NOTES
 from app.contact.physical_inputs import PhysicalInputs
 from app.contact.play_button import PlayButton
 from app.contact.state import PRESETS, ExplorerState, parse_tau, parse_value
+from app.kit.a11y import RadioGroup
 from app.kit.sliders import ExactSlider, LabelledSlider
 from app.kit.style import FORMULA_CSS, NOTE_STYLE
 from app.kit.widgets import LabelledCheckbox, bind, follow
@@ -90,7 +91,7 @@ class Controls:
                                  name=name, direct=True)
             bind(widget, state.param[name], state.set_input)
             setattr(self, f"{name}_slider", widget)
-        self.drive_select = pn.widgets.RadioButtonGroup(
+        self.drive_select = RadioGroup(  # (a radio group: aria-checked)
             label="Set the drive by", options=DRIVE_OPTIONS, value=state.drive,
             sizing_mode="stretch_width", margin=(5, 10))
         bind(self.drive_select, state.param.drive)
