@@ -88,7 +88,7 @@ class Controls:
         for name, label, start, end, step in SLIDERS:
             widget = ExactSlider(label=label, value=getattr(state, name), start=start,
                                  end=end, step=step, parse=partial(parse_value, name),
-                                 name=name, direct=True)
+                                 name=name)
             bind(widget, state.param[name], state.set_input)
             setattr(self, f"{name}_slider", widget)
         self.drive_select = RadioGroup(  # (a radio group: aria-checked)
@@ -100,7 +100,7 @@ class Controls:
             sizing_mode="stretch_width", margin=0)
         self.theta_slider = ExactSlider(
             label="θ (°): drive angle, tan θ = u₀/H", value=state.theta, start=0.0, end=89.5,
-            step=0.1, parse=partial(parse_value, "theta"), name="theta", direct=True)
+            step=0.1, parse=partial(parse_value, "theta"), name="theta")
         bind(self.theta_slider, state.param.theta, state.set_input)
         self.drive_note = pn.pane.HTML("", sizing_mode="stretch_width", styles=NOTE_STYLE,
                                        name="drive_note")
@@ -108,7 +108,7 @@ class Controls:
         self.tau_slider = ExactSlider(
             label="τ = ωt (rad): time", value=state.tau, start=c.tau0, end=c.tau_end,
             step=TAU_STEP, parse=lambda text: parse_tau(text, view.shown, state.period),
-            name="tau", direct=True)
+            name="tau")
         follow(self.tau_slider, state.param.tau, state.set_input)
         self.play_button = PlayButton(width=110)  # (the keyboard stays on it)
         self.play_button.param.watch(

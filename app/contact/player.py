@@ -56,7 +56,7 @@ FRAMES_PER_CONTACT = 240  # one contact at speed 1 in CONTACT_SECONDS: 60 frames
 _PLAY_JS = Path(__file__).with_name("player.js").read_text()
 
 #: The tags by which the server finds the controls the script writes (`Player.play`).
-CONTROL_TAGS = {"entry": "tau-entry", "slider": "tau-slider", "formula": FORMULAS_TAG}
+CONTROL_TAGS = {"entry": "tau-entry", "slider": "tau-value", "formula": FORMULAS_TAG}
 
 
 class Sprite(Protocol):
@@ -131,8 +131,6 @@ class Player:
         if doc is None:
             return
         found = {name: doc.select_one({"tags": tag}) for name, tag in CONTROL_TAGS.items()}
-        if found["slider"] is not None:  # a LabelledSlider: its value is in its `data`
-            found["slider"] = found["slider"].data
         if any(self.script.args[name] is not model for name, model in found.items()):
             self.script.args = {**self.script.args, **found}
 

@@ -1,6 +1,7 @@
-"""Sliders: `LabelledSlider` (the browser's own range input, named by its label),
-`DirectSlider` (its browser moves taken by Bokeh alone) and `ExactSlider` (a slider with
-a box for exact entry, and a message under the box for a bad entry).
+"""Sliders: `LabelledSlider` (the browser's own range input, named by its label, a Panel
+component), `SliderModel` and `DirectSlider` (a slider's values as a Bokeh model the app
+owns, and the range input that draws it) and `ExactSlider` (a slider with a box for exact
+entry, and a message under the box for a bad entry).
 
 `ExactSlider` shows one number three ways: a slider over a teaching range, a text box
 taking any value of the parameter's whole domain, and, when the typed text is refused,
@@ -8,13 +9,13 @@ the reason under the box (the same words as for a bad URL value: both come from 
 parse function).  A refused entry changes nothing and the box shows the last good value
 again; a good value outside the slider's range widens the range to show it.
 
-Built from Panel's public components only (the slider a `LabelledSlider`), kept in step
-on the server: the slider's moves write the box, the box's entries write the slider,
-both through `value`.  A value from the browser is applied inside `panel.io.hold` (or
-`unlocked`, `ExactSlider.follow_browser`): everything it changes (the box, and what
-watches `value`: the plots, the readout) goes to the browser as one message.  Bokeh
-builds each message's serializer over every model of the document, so a move whose
-changes went out as several messages cost more server CPU (`docs/deploy.md`, "Load").
+Its slider's values are a `SliderModel`; the browser's moves arrive as Bokeh changes of
+that model's `value`, taken by one public ``on_change`` (`ExactSlider.follow`, as
+demo.bokeh.org's apps take a widget's value), and applied inside `panel.io.unlocked`
+(or `panel.io.hold`): everything a move changes (the box, and what watches `value`: the
+plots, the readout) goes to the browser as one message.  Bokeh builds each message's
+serializer over every model of the document, so a move whose changes went out as
+several messages cost more server CPU (`docs/deploy.md`, "Load").
 """
 
 from __future__ import annotations
@@ -25,10 +26,12 @@ from typing import ClassVar
 
 import panel as pn
 import param
-from bokeh.document import Document
+from bokeh.core.properties import Bool, Float, String
+from bokeh.model import DataModel
 from bokeh.models import TextInput
 from panel.io import unlocked
 from panel.io.state import set_curdoc
+from panel.reactive import ReactiveHTML
 
 from app.kit.batch import held
 from app.kit.style import FOCUS_RING
@@ -47,11 +50,6 @@ if (data.show_title) { title.textContent = data.label + ": " + data.value; }
 
 #: JavaScript of `LabelledSlider`: the input's value into the model (`data.value`).
 _SLIDER_SET = "data.value = parseFloat(input.value);"
-
-#: JavaScript of `DirectSlider`: the value set with BokehJS's `setv`, which Panel does not
-#: take for a change of the parameter (it takes what a script assigns, ``data.NAME = ...``).
-_DIRECT_SET = "data.setv({value: parseFloat(input.value)});"
-
 
 def _slider_page(set_value: str) -> str:
     """JavaScript of a slider's keys: Page Up / Page Down move five steps (as BokehJS's
@@ -115,21 +113,68 @@ class LabelledSlider(WrittenHTML):
         super().__init__(**params)
 
 
-class DirectSlider(LabelledSlider):
-    """A `LabelledSlider` whose moves in the browser reach the server through Bokeh alone.
+class SliderModel(DataModel):
+    """What an `ExactSlider`'s slider shows, as a Bokeh model the app owns: the value,
+    the range, the step, the label (its accessible name) and whether it is disabled.
 
-    Panel takes a change of a `LabelledSlider` from the browser 50 ms after it arrives,
-    through its own machinery (~1 ms of server CPU per move), and sets `value`.  This
-    one's scripts set the value with BokehJS's `setv`, which Panel does not take: its
-    `value` changes only from the server, and the browser's moves are taken by a Bokeh
-    `on_change` of the model's `data` (`ExactSlider.follow_browser`), once each.
-    """
+    The browser's range input (`DirectSlider`) draws it and writes its moves into it
+    (`value`); Bokeh sends that change to the server, where the slider takes it with
+    the model's public ``on_change`` (`ExactSlider.follow`).  The server's changes
+    (a typed value, a preset, a widened range) are set on it and Bokeh sends them: one
+    model, one property per quantity, each change sent once, the browser's own move
+    never sent back to it (Bokeh does not echo a change to the client that made it, and
+    the server finds the value already set)."""
+
+    value = Float(default=0.0)
+    start = Float(default=0.0)
+    end = Float(default=1.0)
+    step = Float(default=0.1)
+    label = String(default="")
+    disabled = Bool(default=False)
+
+
+#: JavaScript of `DirectSlider`: the input shows its `SliderModel` (found by its id in
+#: the document, BokehJS's public `get_model_by_id`) and follows each change of it
+#: (the view's `connect` to the model's `change`, disconnected with the view).
+_DIRECT_RENDER = """
+const m = model.document.get_model_by_id(data.target);
+state.model = m;
+state.input = input;
+const show = () => {
+  const el = state.input;
+  el.min = m.start; el.max = m.end; el.step = m.step;
+  el.value = m.value;
+  el.disabled = m.disabled;
+  el.setAttribute("aria-label", m.label);
+};
+show();
+if (!state.connected) { view.connect(m.change, show); state.connected = true; }
+"""
+
+#: JavaScript of `DirectSlider`: the input's value into its `SliderModel`.
+_DIRECT_SET = "state.model.value = parseFloat(input.value);"
+
+
+class DirectSlider(ReactiveHTML):
+    """The browser's own range input drawing the `SliderModel` whose id is `target`,
+    named by the model's label for a screen reader (`aria-label`), its moves written
+    into that model (never into this component's parameters: the model is the one
+    place the slider's value is held).  Its keys are those of `LabelledSlider`."""
+
+    target = param.String(default="", doc="the id of the SliderModel drawn")
+
+    _template = ('<input type="range" id="input" '
+                 'oninput="${script(\'input\')}" onkeydown="${script(\'keydown\')}"></input>')
 
     _scripts: ClassVar[dict[str, str]] = {
-        **LabelledSlider._scripts,
+        "render": _DIRECT_RENDER,
         "input": _DIRECT_SET,
         "keydown": _slider_page(_DIRECT_SET),
     }
+
+    def __init__(self, **params) -> None:
+        params["stylesheets"] = [LabelledSlider.CSS, *params.get("stylesheets", [])]
+        super().__init__(**params)
 
 
 #: The box of an `ExactSlider` (a Bokeh `TextInput`, which the page's CSS for Panel's
@@ -145,8 +190,10 @@ class ExactSlider(pn.viewable.Viewer):
 
     `parse(text)` returns the value a typed text stands for, or raises ValueError with
     the message to show.  `value` is the one to watch or set; `disabled` greys out both.
-    `direct`: the slider is a `DirectSlider`, whose browser moves only `follow_browser`
-    takes (it must be called with the served document; `name` is then required).
+    `model` is the `SliderModel` the slider draws (tagged ``{name}-value``); the
+    browser's moves of the slider arrive as changes of its `value` (`follow`).
+    `name` names the slider's and the box's models (CSS classes ``slider-{name}``,
+    ``entry-{name}``, tags ``{name}-slider``, ``{name}-entry``) and the message's pane.
     """
 
     value = param.Number(default=0.0)
@@ -157,35 +204,36 @@ class ExactSlider(pn.viewable.Viewer):
 
     def __init__(self, *, label: str, value: float, start: float, end: float, step: float,
                  parse: Callable[[str], float], digits: int = 6,
-                 name: str | None = None, direct: bool = False) -> None:
+                 name: str | None = None) -> None:
         if not start < end:
             raise ValueError(f"{label}: start {start} must be below end {end}")
-        if direct and not name:
-            raise ValueError(f"{label}: a direct slider needs a name (`follow_browser`)")
         super().__init__(value=value, start=min(start, value), end=max(end, value))
         self._range = (start, end)  # the slider's own (teaching) range
         self._parse = parse
         self._digits = digits
-        self._doc: Document | None = None  # the served document (`follow_browser`)
         self._due = value  # the browser's last move, for `_apply_due`
         self._moving = False  # (a move of the slider is being applied: `moved`)
         self._scheduled = False
-        self._slider = (DirectSlider if direct else LabelledSlider)(
-            label=label, value=value, start=self.start, end=self.end, step=step,
-            sizing_mode="stretch_width", margin=(0, 8, 5, 8),
+        #: what the slider shows, and where the browser's moves arrive
+        self.model = SliderModel(value=value, start=self.start, end=self.end, step=step,
+                                 label=label, tags=[f"{name}-value"] if name else [])
+        self._slider = DirectSlider(
+            target=self.model.id, sizing_mode="stretch_width", margin=(0, 8, 5, 8),
             css_classes=[f"slider-{name}"] if name else [],
             tags=[f"{name}-slider"] if name else [])
         # (Bokeh's own text input: written on every move of the slider, a change costs
-        # the server ~0.02 ms against ~0.9 ms for Panel's TextInput)
+        # the server far less than Panel's TextInput; `benchmarks.app.move_cost`); it
+        # holds the slider's model, so that the model is in every document the slider
+        # is drawn in
         self._entry = TextInput(title=label, value=self.text(value),
                                 sizing_mode="stretch_width", margin=(0, 8),
                                 stylesheets=[ENTRY_CSS],
                                 css_classes=[f"entry-{name}"] if name else [],
-                                tags=[f"{name}-entry"] if name else [])
+                                tags=[*([f"{name}-entry"] if name else []), self.model])
         self._message = pn.pane.HTML("", visible=False, styles=ERROR_STYLE,
                                      margin=(0, 8), sizing_mode="stretch_width",
                                      name=name and f"{name}_error")
-        self._slider.param.watch(self._on_slider, "value")
+        self.model.on_change("value", self.follow)
         self._entry.on_change("value", self._on_entry)
         self._layout = pn.Column(pn.pane.Bokeh(self._entry, sizing_mode="stretch_width",
                                                margin=0), self._message, self._slider,
@@ -198,54 +246,34 @@ class ExactSlider(pn.viewable.Viewer):
         """How the box shows the value `v`."""
         return f"{v:.{self._digits}g}"
 
-    def _on_slider(self, event: param.parameterized.Event) -> None:
-        if not finite(event.new):  # (from a script: no slider sends it) put it back
-            show_later(self._slider, self.value)
+    def follow(self, attr: str, old: float, new: float) -> None:
+        """Take a move of the slider in the browser: a change of `model.value` (Bokeh's
+        public ``on_change``; the one path of a browser's move into the app).
+
+        Panel would apply a widget change from the browser 50 ms after it arrives (it
+        waits to merge the moves of a drag), a wait with the server idle.  In a served
+        document the move is applied by `_apply_due` on the event loop's next turn
+        (inside `unlocked`, so that all it changes goes out as one message; moves that
+        arrive before it runs are merged into the last); in a document not served, at
+        once.  The server's own change of the model (`_show_value`) finds the value
+        equal and changes nothing."""
+        if new == self.value:
             return
-        # everything the move changes (this box, the plots, the readout) goes to the
-        # browser in one message
-        with held():
-            self.moved(event.new)
-
-    def moved(self, value: float) -> None:
-        """Set `value` as a move of the slider: its range is not narrowed (a range
-        widened to show a value typed beyond it stays while the thumb is dragged back,
-        so that the thumb stays under the pointer; it is the slider's own again at the
-        next value typed or set)."""
-        self._moving = True
-        try:
-            self.value = value
-        finally:
-            self._moving = False
-
-    def follow_browser(self, doc: Document) -> None:
-        """Take the slider's moves in the served document `doc` as Bokeh delivers them.
-
-        Panel applies a widget change from the browser 50 ms after it arrives (it waits
-        to merge the moves of a drag), a wait in which the server is idle and which is
-        half of a move's time on screen.  Bokeh's own `on_change` of the slider's values
-        (its model's `data`, see `LabelledSlider`) runs when the change arrives; the move
-        is then applied by `_apply_due` on the event loop (inside `unlocked`, so that all
-        it changes goes out as one message; the moves that arrive before it runs are
-        merged into the last).  A `direct` slider's moves Panel does not take at all
-        (`DirectSlider`); another's, Panel's delayed application finds already set and
-        changes nothing.  The model is found by its tag (`{name}-slider`); a slider
-        without a name is left to Panel, one not on the page (e.g. the presentation
-        view's) has no moves to take.
-        """
-        tags = self._slider.tags
-        model = doc.select_one({"tags": tags[0]}) if tags else None
-        if model is not None:
-            self._doc = doc
-            model.data.on_change("value", self._on_browser_value)
-
-    def _on_browser_value(self, attr: str, old: float, new: float) -> None:
-        if new == self.value or not finite(new):  # (the server's own change, echoed by
-            return  # Bokeh; or what no slider sends, which `_on_slider` puts back)
         self._due = new
-        if not self._scheduled:
+        doc = self.model.document
+        if doc is None or doc.session_context is None:
+            with held():
+                self._apply(new)
+        elif not self._scheduled:
             self._scheduled = True
-            self._doc.add_next_tick_callback(self._apply_due)
+            doc.add_next_tick_callback(self._apply_due)
+
+    def _apply(self, value: float) -> None:
+        """A move to `value` (what no slider sends, a value not finite, is put back)."""
+        if finite(value):
+            self.moved(value)
+        else:
+            self.model.value = self.value
 
     async def _apply_due(self) -> None:
         """Apply the browser's last move (a coroutine: Bokeh runs it on the event loop,
@@ -258,8 +286,22 @@ class ExactSlider(pn.viewable.Viewer):
         """
         self._scheduled = False
         await asyncio.sleep(0)
-        with set_curdoc(self._doc), unlocked():
-            self.moved(self._due)
+        doc = self.model.document
+        if doc is None:  # (the session ended meanwhile)
+            return
+        with set_curdoc(doc), unlocked():
+            self._apply(self._due)
+
+    def moved(self, value: float) -> None:
+        """Set `value` as a move of the slider: its range is not narrowed (a range
+        widened to show a value typed beyond it stays while the thumb is dragged back,
+        so that the thumb stays under the pointer; it is the slider's own again at the
+        next value typed or set)."""
+        self._moving = True
+        try:
+            self.value = value
+        finally:
+            self._moving = False
 
     def _on_entry(self, attr: str, old: str, new: str) -> None:
         try:
@@ -275,7 +317,6 @@ class ExactSlider(pn.viewable.Viewer):
         with held():
             self.value = v
 
-
     @param.depends("value", watch=True)
     def _show_value(self) -> None:
         v = self.value
@@ -284,10 +325,10 @@ class ExactSlider(pn.viewable.Viewer):
         # move of the slider only widens it (`moved`)
         lo, hi = (self.start, self.end) if self._moving else self._range
         start, end = min(lo, v), max(hi, v)
-        with held():  # (the box is a Bokeh model: `held_set`)
+        with held():  # (the models are Bokeh models: Bokeh's lock)
             if (start, end) != (self.start, self.end):
                 self.param.update(start=start, end=end)
-            self._slider.write(value=v)  # (nothing when it holds v: the browser's move)
+            self.model.value = v  # (nothing sent when it holds v: the browser's move)
             self._entry.value = self.text(v)
 
     def set_range(self, start: float, end: float, value: float) -> None:
@@ -303,9 +344,10 @@ class ExactSlider(pn.viewable.Viewer):
 
     @param.depends("start", "end", watch=True)
     def _show_range(self) -> None:
-        self._slider.param.update(start=self.start, end=self.end)
+        with held():
+            self.model.update(start=self.start, end=self.end)
 
     @param.depends("disabled", watch=True)
     def _show_disabled(self) -> None:
         with held():
-            self._slider.disabled = self._entry.disabled = self.disabled
+            self.model.disabled = self._entry.disabled = self.disabled

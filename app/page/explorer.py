@@ -214,13 +214,10 @@ class Explorer(param.Parameterized):
     def attach(self, shell: pn.Column, page: pn.Column | None = None) -> pn.Column:
         """Show `page` (default: `view()`) in the served `shell` (`app.page.guard.serve_shell`),
         in the session whose document is being filled: its end stops the explorer's
-        runs, its sliders take the browser's moves as they arrive."""
-        doc = pn.state.curdoc
+        runs."""
         page = page or self.view()
         shell.objects = [page]
         pn.state.on_session_destroyed(self.close)
-        for slider in self.contact.controls.sliders():
-            slider.follow_browser(doc)  # (its moves without Panel's 50 ms wait)
         return page
 
     def close(self, session_context) -> None:

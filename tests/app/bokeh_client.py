@@ -9,8 +9,9 @@ the explorer, whose ψ slider (`slider_values`) and plots' source (the
 ``ColumnDataSource`` named ``force``) it finds.  `Tab.move` sends a ψ value as a
 browser's slider does (a ``PATCH-DOC`` of the slider's ``value``).
 
-(The benchmarks have their own, benchmarks/app/client.py, which also finds the slider
-in older revisions' pages: tests and benchmarks do not import each other.)
+(The benchmarks and the replica smoke check have their own, docker/browser_client.py,
+which also finds the slider in older revisions' pages: tests and benchmarks do not import
+each other.)
 """
 
 from __future__ import annotations
@@ -62,12 +63,10 @@ def named(doc_json, name: str) -> list[str]:
 
 
 def slider_values(doc_json, name: str) -> list[str]:
-    """The ids of the value models of the app's slider `name` (a `LabelledSlider`: the
-    model whose CSS classes hold ``slider-NAME`` keeps its value in its ``data`` model,
-    which the browser's moves change)."""
-    return [m["attributes"]["data"]["id"] for m in models(doc_json).values()
-            if f"slider-{name}" in (m.get("attributes", {}).get("css_classes") or [])
-            and isinstance(m["attributes"].get("data"), dict)]
+    """The ids of the value models of the app's slider `name` (its `SliderModel`, tagged
+    ``NAME-value``, whose ``value`` the browser's moves change)."""
+    return [i for i, m in models(doc_json).items()
+            if f"{name}-value" in (m.get("attributes", {}).get("tags") or [])]
 
 
 class Tab:

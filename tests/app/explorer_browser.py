@@ -117,7 +117,7 @@ def explorer_server(root: Path | None = None, timeout: float = 60.0) -> Iterator
 #: JavaScript: defines window.__col(name, col), a data column of the named model;
 #: window.__views(keep), every BokehJS view of the page that `keep` accepts;
 #: window.__slider(name), the values (value, start, end, step) of ExactSlider `name`'s
-#: slider, a LabelledSlider: its model's `data` (window.__psi(): psi's value);
+#: slider: its `SliderModel`, tagged NAME-value (window.__psi(): psi's value);
 #: window.__renderers(), every glyph renderer view; and window.__renderer(source,
 #: glyph type), the first glyph renderer view of the named source drawing that glyph.
 JS_HELPERS = """() => {
@@ -137,7 +137,7 @@ JS_HELPERS = """() => {
     return views;
   };
   window.__slider = (name) => [...window.Bokeh.documents[0].all_models].find(
-    (m) => m.css_classes != null && m.css_classes.includes("slider-" + name)).data;
+    (m) => m.tags != null && m.tags.includes(name + "-value"));
   window.__psi = () => window.__slider("psi").value;
   window.__renderers = () => window.__views(
     (v) => v.model != null && v.model.type === "GlyphRenderer");

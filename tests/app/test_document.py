@@ -236,7 +236,7 @@ def _sent_unchanged(doc: Document, ex: Explorer, psi: float) -> list[tuple]:
     before = _values(doc)
     events = []
     doc.on_change(events.append)
-    ex.contact.controls.psi_slider._slider.value = psi
+    ex.contact.controls.psi_slider.model.value = psi
     assert events
     return [(type(e.model).__name__, e.model.name, getattr(e, "attr", "data"))
             for e in events
@@ -309,15 +309,15 @@ def test_a_psi_move_changes_only_data_and_the_canvas_caption(ex: Explorer) -> No
     ex.contact.controls.psi_slider.value = 2.5
     events = []
     doc.on_change(events.append)
-    ex.contact.controls.psi_slider._slider.value = 2.51  # as a move in the browser arrives
+    ex.contact.controls.psi_slider.model.value = 2.51  # as a move in the browser arrives
     changed = {(type(e.model).__name__, e.model.name, getattr(e, "attr", "data"))
                for e in events}
     data = {("ColumnDataSource", n, "data") for n in (
         "traction", "disc", "force", "force_marker", "force_landmarks",
         "spheres_drive", "spheres_lower", "spheres_patch", "spheres_forces", "spheres_bound")}
-    slider = doc.select_one({"tags": "psi-slider"}).data  # a LabelledSlider's values
+    slider = doc.select_one({"tags": "psi-value"})  # the slider's values (SliderModel)
     # (the drive angle's slider follows psi: theta = arctan(psi tan theta0))
-    theta = doc.select_one({"tags": "theta-slider"}).data
+    theta = doc.select_one({"tags": "theta-value"})
     # the texts: the derived quantities' table and the four plots' descriptions for
     # screen readers (`app.kit.texts`: their text, a property of their data model, is
     # all they send)
@@ -474,7 +474,7 @@ def test_a_typed_value_widens_a_slider_only_while_it_is_shown(ex: Explorer) -> N
     assert ex.state.psi == 1e12 and slider.end == 1e12
     slider._entry.value = "3"
     assert ex.state.psi == 3.0 and (slider.start, slider.end) == own
-    assert (slider._slider.start, slider._slider.end) == own
+    assert (slider.model.start, slider.model.end) == own
 
 
 def test_fig6_presets_walk_through_the_phases(ex: Explorer) -> None:

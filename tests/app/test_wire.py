@@ -83,7 +83,7 @@ def test_a_psi_move_sends_no_buffers_and_the_browser_gets_core_values(ex: Explor
     ex.view().server_doc(doc)
     events = []
     doc.on_change(events.append)
-    ex.contact.controls.psi_slider._slider.value = 2.5
+    ex.contact.controls.psi_slider.model.value = 2.5
     msg = Protocol().create("PATCH-DOC", events)
     assert msg.buffers == []
     decoded = 0

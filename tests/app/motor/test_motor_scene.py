@@ -281,7 +281,7 @@ def test_bad_input_is_explained_in_the_boxs_unit_and_the_last_good_state_kept(
 
 
 def test_slider_move_core_refuses_is_reverted(scene: MotorScene) -> None:
-    scene.inputs["L"]._slider.value = 5.0  # as a drag in the browser: x0 = -5 mm is off
+    scene.inputs["L"].model.value = 5.0  # as a drag in the browser: x0 = -5 mm is off
     assert scene.state.L == 20.0 and scene.inputs["L"].value == 20.0
     assert scene.inputs["L"].error == ("L = 5 mm would leave the rotor (x₀ = -5 mm) off "
                                        "the rod: move x₀ inside ±5 mm first")
