@@ -48,7 +48,6 @@ class JobRunner:
         #: owner -> (job, done, doc), in the order the owners joined the line
         self._waiting: OrderedDict[Hashable, tuple] = OrderedDict()
         self._thread: threading.Thread | None = None
-        self._running = False
 
     def submit(self, owner: Hashable, job: Callable[[], Any],
                done: Callable[[Any], None]) -> None:
@@ -66,19 +65,6 @@ class JobRunner:
         """Drop `owner`'s waiting job, if any (a running one finishes)."""
         with self._cond:
             self._waiting.pop(owner, None)
-            self._cond.notify_all()
-
-    def waiting(self) -> int:
-        """How many owners have a job waiting."""
-        with self._cond:
-            return len(self._waiting)
-
-    def idle(self, timeout: float = 60.0) -> bool:
-        """Wait until no job is waiting or running (and the last one's `done` has been
-        handed to its session); whether that happened within `timeout` s."""
-        with self._cond:
-            return self._cond.wait_for(lambda: not self._waiting and not self._running,
-                                       timeout)
 
     def _work(self) -> None:
         while True:
@@ -86,7 +72,6 @@ class JobRunner:
                 while not self._waiting:
                     self._cond.wait()
                 _, (job, done, doc) = self._waiting.popitem(last=False)
-                self._running = True
             try:
                 result = job()
             except Exception as err:  # the job's own failure, shown by its owner
@@ -96,9 +81,6 @@ class JobRunner:
                 later(doc, lambda done=done, result=result: done(result))
             except Exception as err:  # (the session ended meanwhile)
                 log.debug("background job's session is gone: %s", err)
-            with self._cond:
-                self._running = False
-                self._cond.notify_all()
 
 
 #: The process's runner (the Methods and Motor cards of every session).

@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 import pytest
-from jobs_helpers import blocked
+from jobs_helpers import Watched, blocked, drained
 
 import app.bem.data
 from app.bem import BemCard, data
@@ -52,7 +52,7 @@ def opened(contact: Contact = CONTACT, tau: float = TAU) -> BemCard:
 
 
 def wait() -> None:
-    assert RUNNER.idle(60)
+    assert drained(RUNNER, 60)
 
 
 def test_nothing_is_built_or_computed_until_opened_and_asked(computed) -> None:
@@ -90,8 +90,9 @@ def test_compute_shows_core_bems_run_and_a_second_request_runs_nothing(computed,
     np.testing.assert_array_equal(card.sources["stuck"].data["x"], f["stuck"]["x"])
     assert card.tau_mark.location == f["readout"]["tau"]
     assert f"{run.worst_T_error:.2g} T₀" in card.status.object
-    card.compute_button.clicks += 1  # the same contact again: from the cache
-    assert RUNNER.waiting() == 0 and not card.progress.busy
+    with Watched(RUNNER) as jobs:
+        card.compute_button.clicks += 1  # the same contact again: from the cache
+    assert jobs.waiting == 0 and not card.progress.busy
     wait()
     assert computed == [key]
     card.close()
@@ -134,8 +135,9 @@ def test_the_card_follows_tau_on_the_runs_steps(computed, runs) -> None:
 def test_a_too_large_request_is_refused_with_the_command_line(computed) -> None:
     card = opened()
     card.resolution.value = data.COMMAND_LINE_ONLY
-    card.compute()
-    assert RUNNER.waiting() == 0 and not card.progress.busy
+    with Watched(RUNNER) as jobs:
+        card.compute()
+    assert jobs.waiting == 0 and not card.progress.busy
     wait()
     assert computed == []
     assert "is more than this page runs" in card.message.object
@@ -161,12 +163,13 @@ def test_a_closed_card_drops_its_waiting_run_and_asks_for_nothing_more(computed)
     card = opened()
     gate = blocked(RUNNER)
     try:
-        card.compute()
-        assert RUNNER.waiting() == 1 and card.progress.busy
-        card.close()
-        assert RUNNER.waiting() == 0
-        card.compute()
-        assert RUNNER.waiting() == 0
+        with Watched(RUNNER) as jobs:
+            card.compute()
+            assert jobs.waiting == 1 and card.progress.busy
+            card.close()
+            assert jobs.waiting == 0
+            card.compute()
+            assert jobs.waiting == 0
     finally:
         gate.set()
     wait()

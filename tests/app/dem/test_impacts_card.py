@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from bokeh.document import Document
+from jobs_helpers import drained
 from test_dem_card import send
 
 from app.dem import impacts
@@ -75,7 +76,7 @@ def test_an_upload_is_scored_and_a_bad_one_refused(tab) -> None:
     text = "incidence_deg,tangential_cor,rebound_spin,rebound_angle\n" + "\n".join(
         ",".join(f"{v:.17g}" for v in r) for r in rows) + "\n"
     send(t, text.encode())
-    assert RUNNER.idle(60)
+    assert drained(RUNNER, 60)
     assert t.state.scores is not None and not t.message.visible
     assert t.progress.busy is False
     r = bench.exact(impact_test(4).impact("alumina", 12.5), impacts.SPRINGS, impacts.TOL)

@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 import pytest
 from bokeh.models import ColorBar
-from jobs_helpers import blocked
+from jobs_helpers import Watched, blocked, drained
 from test_document import assert_sources_match_core, contact_of
 
 import app.methods.data
@@ -35,7 +35,7 @@ def ex() -> Explorer:
 
 def ran(ex: Explorer) -> None:
     """Wait for the runner's jobs (and their results shown)."""
-    assert RUNNER.idle(60)
+    assert drained(RUNNER, 60)
 
 
 def test_methods_overlay_holds_what_numerics_computes(ex: Explorer) -> None:
@@ -122,7 +122,7 @@ def opened() -> MethodsScene:
     s = MethodsScene()
     s.update_contact(Contact(2.414, 0.5236))
     s.card.collapsed = False  # runs the default methods
-    assert RUNNER.idle(60)
+    assert drained(RUNNER, 60)
     return s
 
 
@@ -131,13 +131,14 @@ def test_a_newer_run_replaces_the_waiting_one_and_only_it_is_shown() -> None:
     s = opened()
     gate = blocked(RUNNER)
     try:
-        s.choice.value = ["mdr"]
-        s.choice.value = ["annulus"]  # replaces the waiting run
-        assert RUNNER.waiting() == 1 and s.progress.busy
+        with Watched(RUNNER) as jobs:
+            s.choice.value = ["mdr"]
+            s.choice.value = ["annulus"]  # replaces the waiting run
+        assert jobs.waiting == 1 and s.progress.busy
         assert "computing annulus" in s.status.object
     finally:
         gate.set()
-    assert RUNNER.idle(60)
+    assert drained(RUNNER, 60)
     assert [r.method for r in s.results] == ["annulus"]
     c = s._contact
     n = numerics.INTERACTIVE_RESOLUTION["annulus"]
@@ -151,15 +152,16 @@ def test_a_closed_card_drops_its_waiting_run_and_asks_for_nothing_more() -> None
     shown = s.source.data
     gate = blocked(RUNNER)
     try:
-        s.choice.value = ["mdr"]
-        assert RUNNER.waiting() == 1
-        s.close()
-        assert RUNNER.waiting() == 0  # dropped
-        s.choice.value = ["annulus"]  # a closed card asks for nothing more
-        assert RUNNER.waiting() == 0
+        with Watched(RUNNER) as jobs:
+            s.choice.value = ["mdr"]
+            assert jobs.waiting == 1
+            s.close()
+            assert jobs.waiting == 0  # dropped
+            s.choice.value = ["annulus"]  # a closed card asks for nothing more
+            assert jobs.waiting == 0
     finally:
         gate.set()
-    assert RUNNER.idle(60)
+    assert drained(RUNNER, 60)
     assert s.source.data is shown  # nothing ran for it
 
 
@@ -173,7 +175,7 @@ def test_a_failed_run_ends_the_progress_and_says_why(monkeypatch: pytest.MonkeyP
 
     monkeypatch.setattr(app.methods.data, "solve_all", broken)
     s.run()
-    assert RUNNER.idle(60)
+    assert drained(RUNNER, 60)
     assert not s.progress.busy
     assert s.status.object == "⚠ the methods could not run: out of memory"
 

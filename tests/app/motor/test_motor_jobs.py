@@ -5,7 +5,7 @@ only the newest result is shown; a failed job ends the progress and says why."""
 from __future__ import annotations
 
 import pytest
-from jobs_helpers import blocked
+from jobs_helpers import Watched, blocked
 from test_motor_scene import assert_curve_matches_core, wait
 
 from app.kit.jobs import RUNNER
@@ -18,12 +18,13 @@ def test_a_closed_scene_drops_its_waiting_job_and_asks_for_nothing_more() -> Non
     shown = s.results
     gate = blocked(RUNNER)
     try:
-        s.inputs["x0"].value = -2.0
-        assert RUNNER.waiting() == 1 and s.progress.busy
-        s.close()
-        assert RUNNER.waiting() == 0  # dropped
-        s.inputs["x0"].value = -3.0  # a closed scene asks for nothing more
-        assert RUNNER.waiting() == 0
+        with Watched(RUNNER) as jobs:
+            s.inputs["x0"].value = -2.0
+            assert jobs.waiting == 1 and s.progress.busy
+            s.close()
+            assert jobs.waiting == 0  # dropped
+            s.inputs["x0"].value = -3.0  # a closed scene asks for nothing more
+            assert jobs.waiting == 0
     finally:
         gate.set()
     wait()
@@ -35,9 +36,10 @@ def test_a_newer_request_replaces_the_waiting_one_and_only_it_is_shown() -> None
     wait()
     gate = blocked(RUNNER)
     try:
-        s.inputs["x0"].value = -2.0
-        s.inputs["x0"].value = -4.0  # replaces the waiting request
-        assert RUNNER.waiting() == 1 and s.progress.busy
+        with Watched(RUNNER) as jobs:
+            s.inputs["x0"].value = -2.0
+            s.inputs["x0"].value = -4.0  # replaces the waiting request
+        assert jobs.waiting == 1 and s.progress.busy
         assert s.status.object == "computing the thrust-speed curve, the load and the wear…"
     finally:
         gate.set()

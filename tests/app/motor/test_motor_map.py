@@ -10,6 +10,7 @@ import threading
 
 import numpy as np
 import pytest
+from jobs_helpers import Watched
 from test_motor_scene import wait
 
 import app.motor.map_data as md
@@ -102,9 +103,10 @@ def opened(scene: MotorScene):
 def test_the_card_refuses_a_large_map_in_words_and_keeps_its_map(scene) -> None:
     m = opened(scene)
     shown = m.data
-    m.size_input.value = "200"
+    with Watched(RUNNER) as jobs:
+        m.size_input.value = "200"
     assert m.message.visible and "python -m core.motor.study run SPEC.toml" in m.message.object
-    assert RUNNER.waiting() == 0 and m.data is shown and not m.progress.busy
+    assert jobs.waiting == 0 and m.data is shown and not m.progress.busy
     m.size_input.value = "6"
     assert not m.message.visible
 

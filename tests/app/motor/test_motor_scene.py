@@ -1,7 +1,7 @@
 """Server-side tests of the Motor card (no browser): inputs in, named sources out.
 
 Every plotted number must be exactly what `core.motor` computes for the card's state;
-the background job's results are waited for on the runner (`RUNNER.idle`).
+the background job's results are waited for on the runner (`jobs_helpers.drained`).
 """
 
 from __future__ import annotations
@@ -13,6 +13,7 @@ from types import SimpleNamespace
 import numpy as np
 import pandas as pd
 import pytest
+from jobs_helpers import drained
 
 from app.kit.jobs import RUNNER
 from app.motor import FIELDS, MotorScene
@@ -31,7 +32,7 @@ eq = np.testing.assert_array_equal
 
 def wait() -> None:
     """Wait for the runner's jobs (the card's results shown)."""
-    assert RUNNER.idle(60)
+    assert drained(RUNNER, 60)
 
 
 def motor_of(s: MotorScene) -> tuple[Motor, float]:
