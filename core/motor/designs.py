@@ -58,6 +58,7 @@ from core.motor.motor import Motor
 from core.motor.moving_rotor import PSI, SPRINGS, STEPS, _resolution
 from core.motor.wear import HOUR
 from core.numerics.loading import partial_stick_estimate, trapezoid
+from core.numerics.mdr import march_into
 from core.validation import DOMAIN, MOTOR_DOMAIN, Interval
 
 #: The figures of merit of ``DesignMerits``: name -> (SI unit, description).
@@ -272,69 +273,6 @@ def _drive_grid(psi, tau0, v, n):
 
 
 @njit(cache=True, nogil=True)
-def _march(xx, d, drive, scale, u, T, P, S):
-    """``core.numerics.mdr.march`` without the stick radius, into T, P, S: the same
-    spring rule and the same sums in the same order, so the same T, P and S bit for bit
-    (``tests/core/test_motor_batch.py``), ~20-40 % faster: xx holds the squared spring
-    positions, and the springs held from the previous step and those entering are
-    walked in two loops (no test of which a spring is). A held spring slides when
-    |trial| > w, the sign of w - |trial| < 0 exactly; its slip is |trial| - w =
-    -(w - |trial|) exactly."""
-    nt = d.size
-    n = xx.size
-    m_prev = 0
-    while m_prev < n and u[m_prev] != 0.0:
-        m_prev += 1
-    d_prev = d[0]
-    drive_prev = drive[0]
-    for k in range(nt):
-        dk = d[k]
-        dr = drive[k]
-        du = dr - drive_prev
-        m = m_prev
-        while m < n and dk - xx[m] > 0.0:
-            m += 1
-        while m > 0 and dk - xx[m - 1] <= 0.0:
-            m -= 1
-        for i in range(m, m_prev):
-            u[i] = 0.0
-        t_sum = 0.0
-        p_sum = 0.0
-        s_sum = 0.0
-        held = m if m < m_prev else m_prev
-        for i in range(held):
-            x2 = xx[i]
-            w = dk - x2
-            trial = u[i] + du
-            a = abs(trial)
-            if a > w:
-                s_sum += 0.5 * (max(d_prev - x2, 0.0) + w) * (-(w - a))
-                trial = w if trial > 0.0 else -w
-            u[i] = trial
-            t_sum += trial
-            p_sum += w
-        for i in range(held, m):
-            x2 = xx[i]
-            w = dk - x2
-            frac = (x2 - d_prev) / (dk - d_prev) if dk != d_prev else 0.0
-            frac = min(max(frac, 0.0), 1.0)
-            trial = dr - (drive_prev + frac * du)
-            margin = w - abs(trial)
-            if margin < 0.0:
-                s_sum += 0.5 * (max(d_prev - x2, 0.0) + w) * (-margin)
-                trial = w if trial > 0.0 else -w
-            u[i] = trial
-            t_sum += trial
-            p_sum += w
-        T[k] = scale * t_sum
-        P[k] = scale * p_sum
-        S[k] = scale * s_sum
-        m_prev = m
-        d_prev = dk
-        drive_prev = dr
-
-
-@njit(cache=True, nogil=True)
 def _evaluate(psi, tau0, v, xx, springs, steps):
     """(r, p_in, p_loss) of one contact at speed v: ``core.motor.moving_rotor._one``
     (``core.numerics.mdr.moving`` and its integrals), the same operations in the same
@@ -356,7 +294,8 @@ def _evaluate(psi, tau0, v, xx, springs, steps):
     d[nt - 1] = 0.0
     scale = 0.75 * c0 ** 1.5 * 2.0 / springs
     T, P, S = np.empty(nt), np.empty(nt), np.empty(nt)
-    _march(xx, d, drive, scale, np.zeros(springs), T, P, S)
+    # no stick radius (an empty b): the positions x are not read, their squares xx are
+    march_into(xx, xx, d, drive, scale, np.zeros(springs), T, P, S, np.empty(0))
     impulse = trapezoid(P, tau)
     mean_T = np.empty(nt - 1)
     d_sin = np.empty(nt - 1)
@@ -671,6 +610,18 @@ def _reals(name: str, value: ArrayLike) -> NDArray[np.float64]:
     return raw.astype(np.float64)
 
 
+def _broadcast(**values: ArrayLike) -> tuple[NDArray[np.float64], ...]:
+    """The arguments, by name, as float arrays broadcast together (read-only views of
+    one shape; ValueError naming an argument that is not real numbers, or the shapes
+    that do not broadcast)."""
+    arrays = [_reals(name, value) for name, value in values.items()]
+    try:
+        return tuple(np.broadcast_arrays(*arrays))
+    except ValueError as err:
+        shapes = ", ".join(f"{name} {a.shape}" for name, a in zip(values, arrays, strict=True))
+        raise ValueError(f"the shapes of {shapes} do not broadcast together") from err
+
+
 def _check_all(name: str, values: NDArray[np.float64], row: Interval) -> None:
     """ValueError naming the first element of ``values`` outside ``row`` (nan, inf
     included), its value and the range."""
@@ -718,8 +669,7 @@ def contact_merits(psi: ArrayLike, tau0: ArrayLike, load_ratio: ArrayLike = np.n
     design_merits : the same for motors and contact points, in SI units.
     core.motor.best_efficiency, core.motor.no_load_speed, core.motor.operating_speed
     """
-    p, t, ell = np.broadcast_arrays(_reals("psi", psi), _reals("tau0", tau0),
-                                    _reals("load_ratio", load_ratio))
+    p, t, ell = _broadcast(psi=psi, tau0=tau0, load_ratio=load_ratio)
     _check_all("psi", p, PSI)
     _check_all("psi", p, MOTOR_DOMAIN["psi_moving"])
     _check_all("tau0", t, DOMAIN["tau0"])
@@ -811,9 +761,8 @@ def design_merits(motor: Motor | Sequence[Motor], x0: ArrayLike, load: ArrayLike
     contact_merits : the dimensionless kernel, over contacts (psi, tau0).
     core.motor.operating_point, core.motor.moving_wear_rate
     """
-    x, ld, k, hard = np.broadcast_arrays(_reals("x0", x0), _reals("load", load),
-                                         _reals("wear_coefficient", wear_coefficient),
-                                         _reals("hardness", hardness))
+    x, ld, k, hard = _broadcast(x0=x0, load=load, wear_coefficient=wear_coefficient,
+                                hardness=hardness)
     _check_all("load", ld, MOTOR_DOMAIN["load"])
     _check_all("wear_coefficient", k, MOTOR_DOMAIN["wear_coefficient"])
     _check_all("hardness", hard, MOTOR_DOMAIN["hardness"])

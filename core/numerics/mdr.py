@@ -104,27 +104,31 @@ def _stick_radius(x, margin, m, d):
 
 
 @njit(cache=True, nogil=True)
-def march(x, d, drive, scale, u):
-    """March the springs at positions ``x`` (increasing) over the approach ``d`` (w =
-    d - x^2) and the tangential ``drive`` (both per time step, in the units above).
+def march_into(x, xx, d, drive, scale, u, T, P, S, b):
+    """March the springs at positions ``x`` (increasing; ``xx`` their squares x * x)
+    over the approach ``d`` (w = d - x^2) and the tangential ``drive`` (both per time
+    step, in the units above), into the arrays T, P, S (and b) of the time steps:
+    ``march`` without its allocations, the stick radius optional.
 
     u: spring displacements before the first step (updated in place; zero for a fresh
     contact). scale: factor from sum over springs to force (both halves of the row).
-    Returns (T, P, b, S): sum of u and of w_+ times scale, the stick radius b / a*, and
-    the slip work of each step, scale times the sum over sliding springs of the mean
-    Coulomb bound over the step, (w_+(start) + w(end)) / 2, times the slip (the part of
-    the trial displacement the bound cut off): the frictional dissipation in units of
-    T0 times the unit of u (exact for a spring that slides through the whole step with w
-    linear in time, second order otherwise).
+    T, P: sum of u and of w_+ times scale; S: the slip work of each step, scale times
+    the sum over sliding springs of the mean Coulomb bound over the step,
+    (w_+(start) + w(end)) / 2, times the slip (the part of the trial displacement the
+    bound cut off): the frictional dissipation in units of T0 times the unit of u
+    (exact for a spring that slides through the whole step with w linear in time,
+    second order otherwise). b: the stick radius b / a* of each step, or an empty array
+    for none (the margins of the stick test are then not kept: the march alone).
     Every reversal of the drive should be a grid point (springs are then exact there).
+
+    The springs held from the previous step and those entering are walked in two loops
+    (no per-spring test of which a spring is); a spring slides when |trial| > w (the
+    margin w - |trial| < 0) and its slip is |trial| - w = -(w - |trial|), exactly.
     """
     nt = d.size
-    n = x.size
-    T = np.zeros(nt)
-    P = np.zeros(nt)
-    b = np.zeros(nt)
-    S = np.zeros(nt)
-    margin = np.empty(n)
+    n = xx.size
+    stick = b.size > 0
+    margin = np.empty(n if stick else 0)
     m_prev = 0
     while m_prev < n and u[m_prev] != 0.0:
         m_prev += 1
@@ -132,39 +136,74 @@ def march(x, d, drive, scale, u):
     drive_prev = drive[0]
     for k in range(nt):
         dk = d[k]
-        du = drive[k] - drive_prev
+        dr = drive[k]
+        du = dr - drive_prev
         m = m_prev  # springs in contact: the prefix with d - x^2 > 0
-        while m < n and dk - x[m] * x[m] > 0.0:
+        while m < n and dk - xx[m] > 0.0:
             m += 1
-        while m > 0 and dk - x[m - 1] * x[m - 1] <= 0.0:
+        while m > 0 and dk - xx[m - 1] <= 0.0:
             m -= 1
         for i in range(m, m_prev):  # leaving springs drop their displacement
             u[i] = 0.0
         t_sum = 0.0
         p_sum = 0.0
         s_sum = 0.0
-        for i in range(m):
-            w = dk - x[i] * x[i]
-            if i < m_prev:
-                trial = u[i] + du
-            else:  # entering: the drive since it touched (d = x^2 inside this step)
-                frac = (x[i] * x[i] - d_prev) / (dk - d_prev) if dk != d_prev else 0.0
-                frac = min(max(frac, 0.0), 1.0)
-                trial = drive[k] - (drive_prev + frac * du)
-            margin[i] = w - abs(trial)
-            if margin[i] < 0.0:  # slides: the bound cuts off |trial| - w
-                s_sum += 0.5 * (max(d_prev - x[i] * x[i], 0.0) + w) * (-margin[i])
+        held = m if m < m_prev else m_prev
+        for i in range(held):  # in contact at the previous step: stick increment
+            x2 = xx[i]
+            w = dk - x2
+            trial = u[i] + du
+            a = abs(trial)
+            if stick:
+                margin[i] = w - a
+            if a > w:  # slides: the bound cuts off |trial| - w
+                s_sum += 0.5 * (max(d_prev - x2, 0.0) + w) * (a - w)
+                trial = w if trial > 0.0 else -w
+            u[i] = trial
+            t_sum += trial
+            p_sum += w
+        for i in range(held, m):  # entering: the drive since it touched (d = x^2 here)
+            x2 = xx[i]
+            w = dk - x2
+            frac = (x2 - d_prev) / (dk - d_prev) if dk != d_prev else 0.0
+            frac = min(max(frac, 0.0), 1.0)
+            trial = dr - (drive_prev + frac * du)
+            a = abs(trial)
+            if stick:
+                margin[i] = w - a
+            if a > w:
+                s_sum += 0.5 * (max(d_prev - x2, 0.0) + w) * (a - w)
                 trial = w if trial > 0.0 else -w
             u[i] = trial
             t_sum += trial
             p_sum += w
         T[k] = scale * t_sum
         P[k] = scale * p_sum
-        b[k] = _stick_radius(x, margin, m, dk)
         S[k] = scale * s_sum
+        if stick:
+            b[k] = _stick_radius(x, margin, m, dk)
         m_prev = m
         d_prev = dk
-        drive_prev = drive[k]
+        drive_prev = dr
+
+
+@njit(cache=True, nogil=True)
+def march(x, d, drive, scale, u):
+    """March the springs at positions ``x`` (increasing) over the approach ``d`` (w =
+    d - x^2) and the tangential ``drive`` (both per time step, in the units above).
+
+    u: spring displacements before the first step (updated in place; zero for a fresh
+    contact). scale: factor from sum over springs to force (both halves of the row).
+    Returns (T, P, b, S): sum of u and of w_+ times scale, the stick radius b / a*, and
+    the slip work of each step (``march_into``, which this allocates for).
+    Every reversal of the drive should be a grid point (springs are then exact there).
+    """
+    nt = d.size
+    T = np.zeros(nt)
+    P = np.zeros(nt)
+    b = np.zeros(nt)
+    S = np.zeros(nt)
+    march_into(x, x * x, d, drive, scale, u, T, P, S, b)
     return T, P, b, S
 
 

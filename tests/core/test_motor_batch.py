@@ -179,11 +179,45 @@ def test_contact_merits_equal_the_scalar_api() -> None:
         assert same(float(got.load_friction_loss[i]), float(res.friction_loss))
 
 
+def _spring_rule(x, d, drive, scale):
+    """(T, P, S) of ``mdr.march``'s rule (module docstring of core.numerics.mdr) in plain
+    Python, one spring at a time with the held/entering test inside the loop."""
+    n, nt = x.size, d.size
+    u = np.zeros(n)
+    T, P, S = np.zeros(nt), np.zeros(nt), np.zeros(nt)
+    m_prev, d_prev, drive_prev = 0, d[0], drive[0]
+    for k in range(nt):
+        du = drive[k] - drive_prev
+        m = int(np.count_nonzero(d[k] - x * x > 0.0))
+        u[m:] = 0.0
+        t_sum = p_sum = s_sum = 0.0
+        for i in range(m):
+            w = d[k] - x[i] * x[i]
+            if i < m_prev:
+                trial = u[i] + du
+            else:
+                frac = (x[i] * x[i] - d_prev) / (d[k] - d_prev) if d[k] != d_prev else 0.0
+                trial = drive[k] - (drive_prev + min(max(frac, 0.0), 1.0) * du)
+            margin = w - abs(trial)
+            if margin < 0.0:
+                s_sum += 0.5 * (max(d_prev - x[i] * x[i], 0.0) + w) * (-margin)
+                trial = w if trial > 0.0 else -w
+            u[i] = trial
+            t_sum += trial
+            p_sum += w
+        T[k], P[k], S[k] = scale * t_sum, scale * p_sum, scale * s_sum
+        m_prev, d_prev, drive_prev = m, d[k], drive[k]
+    return T, P, S
+
+
 def test_compiled_pieces_are_the_numpy_code_bit_for_bit() -> None:
     """The drive grid, the march and ndarray.sum, compiled, give the very same floats
-    (so the solvers built on them take the very same steps)."""
+    (so the solvers built on them take the very same steps); the march without the stick
+    radius (the kernel's call) gives the floats of ``mdr.march`` and of its spring rule
+    written out."""
     rng = np.random.default_rng(3)
-    xx = mdr.spring_positions(37) ** 2
+    x = mdr.spring_positions(37)
+    checked = 0
     for _ in range(200):
         psi = float(10.0 ** rng.uniform(-5, 6))
         tau0 = float(rng.uniform(-1.55, 1.55))
@@ -195,11 +229,15 @@ def test_compiled_pieces_are_the_numpy_code_bit_for_bit() -> None:
         d = np.maximum(rise(tau, tau0), 0.0) / c0
         d[0] = d[-1] = 0.0
         drive = psi / c0 * relative_drive(tau, tau0, v)
-        T, P, _, S = mdr.march(mdr.spring_positions(37), d, drive, 0.3, np.zeros(37))
+        T, P, _, S = mdr.march(x, d, drive, 0.3, np.zeros(37))
         out = [np.empty(tau.size) for _ in range(3)]
-        designs._march(xx, d, drive, 0.3, np.zeros(37), *out)
+        mdr.march_into(x, x * x, d, drive, 0.3, np.zeros(37), *out, np.empty(0))  # the kernel
         for a, b in zip(out, (T, P, S), strict=True):
             np.testing.assert_array_equal(a, b)
+        if checked < 40:  # the spring rule written out, one test per spring
+            for a, b in zip(_spring_rule(x, d, drive, 0.3), (T, P, S), strict=True):
+                np.testing.assert_array_equal(a, b)
+            checked += 1
     for n in [*range(0, 300), 577, 1023, 4097]:
         a = rng.standard_normal(n) * 10.0 ** rng.uniform(-3, 3, n)
         assert designs._sum(a) == a.sum()
@@ -226,3 +264,17 @@ def test_bad_inputs_are_refused_by_name() -> None:
     heavy = Motor(rod, R=5e-3, G=24e9, nu=0.31, mu=0.2, preload=0.5)  # Phi >= 8 near the ends
     out = design_merits(heavy, [0.0005, -0.0199])
     assert np.isfinite(out.stall_thrust[0]) and np.isnan(out.stall_thrust[1])
+
+
+def test_arguments_broadcast_together_or_are_refused_by_name() -> None:
+    """Both APIs broadcast their arguments by one rule: a scalar load with an array of
+    contacts gives the contacts' shape; shapes that do not broadcast are named."""
+    got = contact_merits([[2.0], [3.0]], [0.1, 0.2, 0.3], 0.2, **COARSE)
+    assert got.no_load_speed.shape == (2, 3)
+    assert np.all(got.load_ratio == 0.2)
+    with pytest.raises(ValueError, match=r"psi \(2,\), tau0 \(3,\), load_ratio \(\) do not"):
+        contact_merits([2.0, 3.0], [0.1, 0.2, 0.3], **COARSE)
+    rod = Rod(half_length=0.02, thickness=4e-3, nu_rod=0.3, amplitude=10e-6, frequency=40e3)
+    m = Motor(rod, R=5e-3, G=24e9, nu=0.31, mu=0.2, preload=0.05)
+    with pytest.raises(ValueError, match=r"x0 \(2,\), load \(3,\)"):
+        design_merits(m, [-1e-3, -2e-3], [0.0, 1e-3, 2e-3], **COARSE)
