@@ -536,7 +536,7 @@ def _contact(psi, tau0, load, springs, steps, xtol, xatol, xx, cache, count, out
                                                springs, steps, cache, count)
         k = -1 if math.isnan(v) else _cached(psi, tau0, v, xx, springs, steps, cache, count)
         if k >= 0:
-            p_out = v * cache[k, 1]
+            p_out = load * v  # F_L V (load.operating_efficiency): 0 at zero load
             out[_VL] = v
             out[_EL] = _efficiency(psi, v, p_out, cache[k, 3])
             out[_PL] = p_out
@@ -575,8 +575,9 @@ class ContactMerits:
         best_speed, best_efficiency, best_thrust_ratio: ``best_efficiency``'s v,
             efficiency and thrust_ratio.
         load_speed, load_efficiency, load_output_power, load_friction_loss: v, eta,
-            p_out and p_loss at the operating point r(v) = l (``operating_speed``,
-            ``moving_rotor``); nan where l > r(0) (the rotor is stalled).
+            p_out = l v and p_loss at the operating point r(v) = l (``operating_speed``,
+            ``moving_rotor``, ``operating_efficiency``); nan where l > r(0) (the rotor
+            is stalled).
         evaluations: thrust-speed evaluations (MDR contacts) made for the contact.
     Every merit is nan where its scalar function raises.
     """
@@ -805,7 +806,6 @@ def design_merits(motor: Motor | Sequence[Motor], x0: ArrayLike, load: ArrayLike
                                 np.ascontiguousarray(tau0[moving]),
                                 np.ascontiguousarray(ratio[moving]), n, m, XTOL_ROOT,
                                 XTOL_BEST)
-    power = mu_n * scale  # W per unit of the dimensionless powers
     loss = out[:, _LL] * (mu_n * scale)  # moving_wear_rate's friction power (W)
     wear = HOUR * k * loss / (mu * hard)
 
@@ -816,7 +816,7 @@ def design_merits(motor: Motor | Sequence[Motor], x0: ArrayLike, load: ArrayLike
         stall_thrust=shaped(stall), no_load_speed=shaped(out[:, _V0] * scale),
         best_efficiency=shaped(out[:, _EB]), best_speed=shaped(out[:, _VB] * scale),
         best_thrust=shaped(out[:, _RB] * mu_n), load_speed=shaped(out[:, _VL] * scale),
-        load_efficiency=shaped(out[:, _EL]), load_power=shaped(out[:, _PL] * power),
+        load_efficiency=shaped(out[:, _EL]), load_power=shaped(ld * (out[:, _VL] * scale)),
         wear_rate=shaped(wear), psi=shaped(psi), tau0=shaped(tau0),
         speed_scale=shaped(scale), coulomb_force=shaped(mu_n),
         evaluations=shaped(out[:, _NE].astype(np.int64)))

@@ -43,6 +43,7 @@ from core.motor.moving_rotor import (
     STEPS,
     _check_contact,
     _count,
+    _efficiency,
     _one,
     _resolution,
     full_slip_speed,
@@ -84,8 +85,9 @@ def operating_speed(psi: float, tau0: float, load_ratio: float, *, springs: int 
 @dataclass(frozen=True)
 class OperatingPoint:
     """The steady operating point of the motor at x0 under a load force (SI): load (N),
-    speed V (m/s) and v = V / (omega |u0|), output power V F_L, input power, friction loss
-    (W, means over a period) and efficiency (output / input; ``MovingRotor``)."""
+    speed V (m/s) and v = V / (omega |u0|), output power V F_L (exactly: 0 at zero
+    load), input power, friction loss (W, means over a period) and efficiency (output /
+    input, ``operating_efficiency``)."""
 
     x0: float
     load: float
@@ -130,12 +132,45 @@ def operating_point(motor: Motor, x0: float, load: float, *, springs: int = SPRI
                          f"x0 = {shown(float(x0))} m: the rotor cannot move") from err
     res = moving_rotor(psi, tau0, v, springs=springs, steps=steps)
     power = mu_n * scale  # W per unit of the dimensionless powers
+    speed = v * scale
     return OperatingPoint(
-        x0=float(x0), load=load, v=v, speed=v * scale,
-        output_power=float(res.output_power) * power,
+        x0=float(x0), load=load, v=v, speed=speed, output_power=load * speed,
         input_power=float(res.input_power) * power,
         friction_loss=float(res.friction_loss) * power,
-        efficiency=float(res.efficiency))
+        efficiency=operating_efficiency(psi, v, load / mu_n, float(res.friction_loss)))
+
+
+def operating_efficiency(psi: float, v: float, load_ratio: float, friction_loss: float
+                         ) -> float:
+    """The efficiency of an operating point: its output power F_L V over its input
+    power, l v / (l v + p_loss) in the dimensionless powers of ``MovingRotor`` (the
+    input power by the energy balance, ``moving_rotor``'s evaluation of eta), with the
+    output power l v, not v r(v): r(v) = l only to the speed solver's tolerance, and at
+    zero load the output power, and so the efficiency, are exactly 0. At v = 0 (a load
+    equal to the stall thrust) the limit v -> 0+ of ``moving_rotor``: 1 for psi <= 1,
+    0 above.
+
+    Parameters
+    ----------
+    psi : float
+        psi of eq 23.
+    v : float
+        The operating speed V / (omega |u0|).
+    load_ratio : float
+        l = F_L / (mu N).
+    friction_loss : float
+        The frictional dissipation at v, p_loss (units of ``MovingRotor``).
+
+    Returns
+    -------
+    float
+
+    See Also
+    --------
+    operating_point, core.motor.moving_rotor
+    """
+    return float(_efficiency(psi, np.array(v), np.array(load_ratio * v),
+                             np.array(friction_loss)))
 
 
 @dataclass(frozen=True)

@@ -20,6 +20,7 @@ from core.motor import (
     operating_speed,
 )
 from core.motor.designs import MERITS, contact_merits, design_merits
+from core.motor.load import operating_efficiency
 from core.numerics import mdr
 from core.numerics.loading import drive_grid, one_minus_s0, relative_drive, rise
 from core.validation import MOTOR_DOMAIN
@@ -174,8 +175,9 @@ def test_contact_merits_equal_the_scalar_api() -> None:
             continue
         res = moving_rotor(p, t, v, **COARSE)
         assert same(float(got.load_speed[i]), v)
-        assert same(float(got.load_efficiency[i]), float(res.efficiency))
-        assert same(float(got.load_output_power[i]), float(res.output_power))
+        loss = float(res.friction_loss)
+        assert same(float(got.load_efficiency[i]), operating_efficiency(p, v, ell[i], loss))
+        assert same(float(got.load_output_power[i]), float(ell[i]) * v)  # l v, not v r(v)
         assert same(float(got.load_friction_loss[i]), float(res.friction_loss))
 
 
@@ -278,3 +280,21 @@ def test_arguments_broadcast_together_or_are_refused_by_name() -> None:
     m = Motor(rod, R=5e-3, G=24e9, nu=0.31, mu=0.2, preload=0.05)
     with pytest.raises(ValueError, match=r"x0 \(2,\), load \(3,\)"):
         design_merits(m, [-1e-3, -2e-3], [0.0, 1e-3, 2e-3], **COARSE)
+
+
+def test_zero_load_delivers_exactly_no_power() -> None:
+    """At zero load the output power F_L V and the efficiency are exactly 0, in the
+    scalar API and the kernel alike (the rotor runs at its no-load speed)."""
+    rod = Rod(half_length=0.02, thickness=4e-3, nu_rod=0.3, amplitude=10e-6, frequency=40e3)
+    m = Motor(rod, R=5e-3, G=24e9, nu=0.31, mu=0.2, preload=0.05)
+    x0 = [-0.2e-3, -1e-3, -8e-3]
+    got = design_merits(m, x0, 0.0, **COARSE)
+    for i, x in enumerate(x0):
+        op = operating_point(m, x, 0.0, **COARSE)
+        assert op.output_power == 0.0 and op.efficiency == 0.0
+        assert got.load_power[i] == 0.0 and got.load_efficiency[i] == 0.0
+        assert op.speed > 0.0 and op.input_power > 0.0
+        assert same(float(got.load_speed[i]), op.speed)
+        assert same(float(got.no_load_speed[i]), op.speed)
+    c = contact_merits([0.5, 2.0], [0.3, 0.5], 0.0, **COARSE)
+    assert np.all(c.load_output_power == 0.0) and np.all(c.load_efficiency == 0.0)
