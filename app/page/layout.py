@@ -21,8 +21,11 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import panel as pn
+from bokeh.models import Column as BokehColumn
+from bokeh.models import CustomJS
 
 from app.contact.phases import STYLES
+from app.contact.state import PRESETS
 from app.contact.view import TAB_TITLES, ContactView
 from app.kit.a11y import KeyShortcut, Landmark, TabList
 from app.kit.style import FOCUS_RING
@@ -92,15 +95,111 @@ PHONE_ORDER_CSS = f"@media (max-width: {PHONE_WIDTH}px) {{ .animation {{ order: 
 #: What a phone's first screen holds besides the spheres' plot (CSS px): the header (two
 #: lines), the card's title, and the row of Play and Step under the plot.
 PHONE_SPHERES_RIM = 175
+#: What a wider screen's first screen holds besides the spheres' plot (CSS px): the
+#: header, the card's title and margins, and the row of Play and Step under the plot.
+SPHERES_RIM = 190
+#: The spheres' card's width less its plot's (CSS px: the card's borders and padding).
+SPHERES_CARD_RIM = 24
+#: The least width of the animation's region on a screen wider than a phone's (CSS px:
+#: its controls' labels on one line).
+ANIMATION_LEAST = 340
 
 
 def phone_fit_css(fig) -> str:
     """A stylesheet for a column holding `fig` (a plot scaled to its width, at the aspect
-    of its `width` and `height`): on a phone no wider than lets the plot and
-    `PHONE_SPHERES_RIM` px fit one screen's height (`100svh`), centred."""
+    of its `width` and `height`): no wider than lets the plot and the row of Play under
+    it fit one screen's height (`100svh`: `PHONE_SPHERES_RIM` px of it on a phone,
+    `SPHERES_RIM` px on a wider screen), centred."""
     aspect = fig.width / fig.height
-    return (f"@media (max-width: {PHONE_WIDTH}px) {{ :host {{ width: 100%; max-width: "
+    return (f":host {{ width: 100%; max-width: calc((100svh - {SPHERES_RIM}px) * "
+            f"{aspect:.4f}); margin-inline: auto; }}"
+            f"@media (max-width: {PHONE_WIDTH}px) {{ :host {{ width: 100%; max-width: "
             f"calc((100svh - {PHONE_SPHERES_RIM}px) * {aspect:.4f}); margin-inline: auto; }} }}")
+
+
+def animation_width_css(fig) -> str:
+    """A stylesheet for the animation's region: on a screen wider than a phone's no wider
+    than its plot (`phone_fit_css`) and the card's rim, but `ANIMATION_LEAST` px, so that
+    the other scenes take the rest of the first screen's width."""
+    aspect = fig.width / fig.height
+    return (f"@media (min-width: {PHONE_WIDTH + 0.02}px) {{ :host {{ max-width: max("
+            f"{ANIMATION_LEAST}px, calc((100svh - {SPHERES_RIM}px) * {aspect:.4f} + "
+            f"{SPHERES_CARD_RIM}px)); }} }}")
+
+
+#: JavaScript (a `CustomJS` run when a plot of the page is first laid out; `titles`: the
+#: titles of each preset's plots, by the preset's name in the menu, the option's value):
+#: when the user picks a preset in a menu (a select's `input` event, which crosses the
+#: shadow roots; the server's own changes of the menu, Reset or a link, fire none), its
+#: plots are scrolled into view once they are drawn and have stayed in place for three
+#: frames (the server's answer may open their tab: up to 5 s), the least way that shows
+#: them whole, or their top (and the tab titles above it) when they are taller than the
+#: window.
+SCROLL_JS = """
+if (window.__zharii_scrolls) { return; }
+window.__zharii_scrolls = true;
+const boxes = (wanted) => {
+  const found = [];
+  const walk = (view) => {
+    const m = view.model;
+    if (m != null && m.type === "Figure" && m.title != null && wanted.includes(m.title.text)) {
+      const r = view.el.getBoundingClientRect();
+      if (r.width > 0 && r.height > 0) { found.push(r); }
+    }
+    for (const child of view.children()) { walk(child); }
+  };
+  for (const root of Object.values(Bokeh.index)) { walk(root); }
+  return found;
+};
+const follow = (key, since) => {
+  let last = null, still = 0;
+  const step = () => {
+    if (Date.now() - since > 5000) { return; }
+    const found = boxes(titles[key]);
+    const box = found.length === 0 ? null : [Math.min(...found.map((r) => r.top)),
+                                              Math.max(...found.map((r) => r.bottom))];
+    still = box != null && last != null && box[0] === last[0] && box[1] === last[1]
+      ? still + 1 : 0;
+    last = box;
+    if (still < 3) { requestAnimationFrame(step); return; }
+    const [top, bottom] = box, room = 70;  // (the card's title or the tabs above)
+    if (top >= 0 && bottom <= innerHeight) { return; }
+    const by = bottom - top + room > innerHeight || top < 0 ? top - room
+      : bottom - innerHeight + 8;
+    window.scrollBy({top: by, behavior: "instant"});
+  };
+  requestAnimationFrame(step);
+};
+document.addEventListener("input", (e) => {
+  const el = e.composedPath()[0];
+  if (el != null && el.tagName === "SELECT" && el.value in titles) {
+    follow(el.value, Date.now());
+  }
+}, {capture: true});
+"""
+
+
+def preset_titles(contact: ContactView) -> dict[str, list[str]]:
+    """The titles of each preset's plots on the full page, by its name in the menu
+    (`Preset.label`): the traction profile (Fig. 6), or the plots of the curve tab the
+    preset opens (`Preset.tab`)."""
+    scenes = {scene.name: scene for scene in contact.tabbed}
+    out = {}
+    for key, preset in PRESETS.items():
+        if key.startswith("fig6"):
+            figs = [contact.traction.figure]
+        else:
+            fig = scenes[preset.tab].figure
+            figs = list(fig.children) if isinstance(fig, BokehColumn) else [fig]
+        out[preset.label] = [f.title.text for f in figs]
+    return out
+
+
+def scroll_to_presets(contact: ContactView) -> None:
+    """Bring a preset's plots into view when the user picks it in the menu
+    (`SCROLL_JS`, started by the traction profile's first layout)."""
+    contact.traction.figure.js_on_change("inner_width", CustomJS(
+        code=SCROLL_JS, args={"titles": preset_titles(contact)}))
 
 
 def within_width(obj: pn.viewable.Viewable) -> pn.Column:
@@ -270,22 +369,27 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
                    "spheres", descriptions),
         pn.Row(ui.play_button, ui.step_button), ui.tau_slider, ui.speed_slider,
         ui.period_box, title="The two spheres (Fig. 2)", flex="0 0 auto")
+    traction = card(*described(pn.pane.Bokeh(contact.traction.figure,
+                                             sizing_mode="stretch_width"),
+                               "traction", descriptions),
+                    title="Traction profile (Fig. 6)", flex="3 1 560px")
+    curves = card(*described(curve_tabs(contact), "curves", descriptions),
+                  title="Curves over the contact", flex="3 1 560px")
+    scroll_to_presets(contact)
+    # the preset's figures (the curves) come before the formulas and the table: beside
+    # them on a wide screen, right under the traction profile otherwise
     main = [
         message,
         *([announcer] if announcer is not None else []),
         *unseen,
         PlotGestures(),
         pn.FlexBox(
-            card(*described(pn.pane.Bokeh(contact.traction.figure,
-                                          sizing_mode="stretch_width"),
-                            "traction", descriptions),
-                 title="Traction profile (Fig. 6)", flex="3 1 560px"),
+            traction,
             card(*described(pn.pane.Bokeh(contact.disc.figure), "disc", descriptions),
                  pn.pane.HTML(DISC_KEY), title="Contact disc", flex="0 0 380px"),
+            curves,
             card(ui.formulas, title="Formulas of the current phase", flex="2 1 480px"),
             card(contact.readout, title="Derived quantities", flex="1 1 380px"),
-            card(*described(curve_tabs(contact), "curves", descriptions),
-                 title="Curves over the contact", flex="1 1 100%"),
             sizing_mode="stretch_width", align_content="flex-start"),
         *map(within_width, cards),
     ]
@@ -295,12 +399,13 @@ def page(contact: ContactView, message: pn.viewable.Viewable,
         pn.FlexBox(
             Landmark(object=pn.Column(*sidebar, sizing_mode="stretch_width"),
                      role="complementary", label="Controls",
-                     styles={"flex": "0 1 370px", "min-width": "0"}),
+                     styles={"flex": "0 1 340px", "min-width": "0"}),
             Landmark(object=pn.Column(animation, sizing_mode="stretch_width"),
                      role="region", label=ANIMATION_LABEL, css_classes=["animation"],
-                     styles={"flex": "0 1 440px", "min-width": "0"}),
+                     styles={"flex": "0 1 440px", "min-width": "0"},
+                     stylesheets=[animation_width_css(contact.spheres.figure)]),
             Landmark(object=pn.Column(*main, sizing_mode="stretch_width"), role="main",
-                     styles={"flex": "1 1 600px", "min-width": "0"}),
+                     styles={"flex": "1 1 560px", "min-width": "0"}),
             flex_wrap="wrap", align_items="flex-start", sizing_mode="stretch_width",
             stylesheets=[PHONE_ORDER_CSS]),
         sizing_mode="stretch_width")
