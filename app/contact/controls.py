@@ -1,13 +1,13 @@
-"""The contact's controls: widgets made from the state's parameters and bound to them.
+"""The contact's controls: widgets made from the state's parameters.
 
-Sliders with exact entry for psi, tau0, mu and nu (`ExactSlider`, bound both ways to
-the state), the way the drive is set (by psi, or by its angle theta with its own
-slider) and the note on what mu and nu change, the tau scrubber (it writes the state's
-tau; while playing, the browser's player moves it), Play/Pause, Step, Speed, the log-psi
-box, the preset menu and its note, Reset, the SI inputs (`app.contact.physical_inputs`),
-the formula card and the CSV downloads.  Every value a widget takes from the browser
-reaches the state through `app.kit.widgets.bind`/`follow`, which refuse what the
-state's domain refuses.
+Sliders with exact entry for psi, tau0, mu and nu (`ExactSlider`), the way the drive
+is set (by psi, or by its angle theta with its own slider) and the note on what mu and
+nu change, the tau scrubber (it writes the state's tau; while playing, the browser's
+player moves it), Play/Pause, Step, Speed, the log-psi box, the preset menu and its
+note, Reset, the SI inputs (`app.contact.physical_inputs`), the formula card and the CSV
+downloads.  `app.contact.view.connect` connects them to the state (every value a widget
+takes from the browser reaches the state there, refused when the state's domain refuses
+it) and to the view.
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ from app.contact.state import PRESETS, ExplorerState, parse_tau, parse_value
 from app.kit.a11y import RadioGroup
 from app.kit.sliders import ExactSlider, LabelledSlider
 from app.kit.style import FORMULA_CSS, NOTE_STYLE
-from app.kit.widgets import LabelledCheckbox, bind, follow
+from app.kit.widgets import LabelledCheckbox
 from core import Contact
 
 #: The sliders of the contact's four numbers: (name, label, start, end, step); their
@@ -64,44 +64,34 @@ LEFT_NOTE_STYLE = {**NOTE_STYLE, "opacity": "0.45"}
 DOWNLOADS = ("curves", "traction", "impulse")
 
 
-class Animates(Protocol):
-    """What Step and Play / Pause act on (`app.contact.animation.Animation`)."""
-
-    def step(self, seconds: float = 1 / 30) -> float: ...
-
-    def press(self, shown: object) -> None: ...
-
-
-class Steps(Protocol):
-    """What the controls act on (`app.contact.view.ContactView`)."""
+class ControlledView(Protocol):
+    """What the controls read of the view (`app.contact.view.ContactView`): the contact
+    on screen (the tau box's range) and the CSV files."""
 
     shown: Contact
-    animation: Animates
 
     def csv_file(self, key: str) -> io.StringIO: ...
 
 
 class Controls:
-    """The contact's widgets, bound to `state`; `view` steps and makes the CSV files."""
+    """The contact's widgets, showing `state`'s values; `view` makes the CSV files.  They
+    are connected to the state and the view by `app.contact.view.connect`."""
 
-    def __init__(self, state: ExplorerState, view: Steps) -> None:
+    def __init__(self, state: ExplorerState, view: ControlledView) -> None:
         for name, label, start, end, step in SLIDERS:
             widget = ExactSlider(label=label, value=getattr(state, name), start=start,
                                  end=end, step=step, parse=partial(parse_value, name),
                                  name=name)
-            bind(widget, state.param[name], state.set_input)
             setattr(self, f"{name}_slider", widget)
         self.drive_select = RadioGroup(  # (a radio group: aria-checked)
             label="Set the drive by", options=DRIVE_OPTIONS, value=state.drive,
             sizing_mode="stretch_width", margin=(5, 10))
-        bind(self.drive_select, state.param.drive)
         self.drive_control = pn.Column(
             pn.pane.HTML("Set the drive by", margin=(0, 10)), self.drive_select,
             sizing_mode="stretch_width", margin=0)
         self.theta_slider = ExactSlider(
             label="θ (°): drive angle, tan θ = u₀/H", value=state.theta, start=0.0, end=89.5,
             step=0.1, parse=partial(parse_value, "theta"), name="theta")
-        bind(self.theta_slider, state.param.theta, state.set_input)
         self.drive_note = pn.pane.HTML("", sizing_mode="stretch_width", styles=NOTE_STYLE,
                                        name="drive_note")
         c = state.contact()
@@ -109,33 +99,23 @@ class Controls:
             label="τ = ωt (rad): time", value=state.tau, start=c.tau0, end=c.tau_end,
             step=TAU_STEP, parse=lambda text: parse_tau(text, view.shown, state.period),
             name="tau")
-        follow(self.tau_slider, state.param.tau, state.set_input)
         self.play_button = PlayButton(width=110)  # (the keyboard stays on it)
-        self.play_button.param.watch(
-            lambda _: view.animation.press(self.play_button.shown), "clicks")
         self.step_button = pn.widgets.Button(label="Step", width=100)
-        self.step_button.on_click(lambda _: view.animation.step())
         self.speed_slider = LabelledSlider(label="Speed", value=state.speed, start=0.1,
                                            end=5.0, step=0.1, show_title=True,
                                            sizing_mode="stretch_width", margin=(5, 10))
-        bind(self.speed_slider, state.param.speed)
-        self.log_box = LabelledCheckbox.from_param(state.param.log_psi,
-                                                   label="log ψ axis (to 10⁶)")
-        self.period_box = LabelledCheckbox.from_param(
-            state.param.period, label="Play the whole period: approach, contact, parting")
+        self.log_box = LabelledCheckbox(label="log ψ axis (to 10⁶)", value=state.log_psi)
+        self.period_box = LabelledCheckbox(
+            label="Play the whole period: approach, contact, parting", value=state.period)
         options = {"(custom)": "", **{p.label: k for k, p in PRESETS.items()}}
         self.preset_select = pn.widgets.Select(label="Preset: the paper's figures",
                                                options=options, value=state.preset)
-        self.preset_select.param.watch(partial(self._on_preset_select, state), "value")
         self.note = pn.pane.HTML("", sizing_mode="stretch_width", styles=NOTE_STYLE)
         self.show_preset(state.preset, NOTES.get(state.preset, ""))
         self.reset_button = pn.widgets.Button(label="Reset", width=100)
-        self.reset_button.on_click(lambda _: (state.reset(), self.clear_refusals()))
 
         self.physical_inputs = PhysicalInputs(state)  # R in mm, G in GPa, ...
         self.physical_box = self.physical_inputs.physical_box
-        # (the boxes the SI inputs replace say nothing of a value refused before)
-        state.param.watch(lambda _: self.clear_refusals(), "physical")
         self.material_select = self.physical_inputs.material_select
         self.physical_card = self.physical_inputs.card
         self._drive_shown: tuple[bool, str] | None = None
@@ -149,11 +129,6 @@ class Controls:
     def _download(key: str, make: Callable[[str], io.StringIO]) -> pn.widgets.FileDownload:
         return pn.widgets.FileDownload(callback=partial(make, key), filename=f"{key}.csv",
                                        label=f"CSV: {key}", color="primary", width=150)
-
-    @staticmethod
-    def _on_preset_select(state: ExplorerState, event) -> None:
-        if event.new and event.new != state.preset:
-            state.apply_preset(event.new)
 
     def show_preset(self, name: str, note: str) -> None:
         """The menu on preset `name` ('' once left) and its note.  A preset left keeps its
@@ -189,11 +164,11 @@ class Controls:
     def clear_refusals(self) -> None:
         """No box says why a value was refused any more (after Reset, or a switch of the
         physical inputs: the value they quote is no longer on screen)."""
-        for slider in self.sliders():
+        for slider in self.sliders().values():
             slider.error = ""
 
-    def sliders(self) -> list[ExactSlider]:
-        """The sliders whose browser moves are taken as they arrive
-        (`ExactSlider.follow_browser`)."""
-        return [self.psi_slider, self.theta_slider, self.tau0_slider, self.mu_slider,
-                self.nu_slider, self.tau_slider]
+    def sliders(self) -> dict[str, ExactSlider]:
+        """The sliders with exact entry, by the name of the state's parameter each sets."""
+        return {"psi": self.psi_slider, "theta": self.theta_slider,
+                "tau0": self.tau0_slider, "mu": self.mu_slider, "nu": self.nu_slider,
+                "tau": self.tau_slider}

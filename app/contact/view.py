@@ -21,6 +21,7 @@ view (URL, cards of other features, messages) is `app.page.explorer`'s.
 from __future__ import annotations
 
 import io
+from functools import partial
 
 import panel as pn
 import param
@@ -43,6 +44,7 @@ from app.kit.batch import held
 from app.kit.figures import Scene
 from app.kit.style import TAB_ROW_CSS
 from app.kit.texts import PaneText
+from app.kit.widgets import bind
 from core import Contact
 
 #: The curve tabs' titles, in the order of `ContactView.tabbed`.
@@ -77,8 +79,6 @@ class ContactView(param.Parameterized):
                              lambda taus: [self.controls.tau_slider.text(t) for t in taus],
                              sprites=[self.spheres])
         self.animation = Animation(self)
-        state.param.watch(lambda e: self.controls.tau_slider.set_range(
-            *played(self.shown, e.new), self.state.tau), "period")
         self.impulse.set_log(state.log_psi)
         #: the curve scenes share one card, one tab each; a scene's figure is built when
         #: its tab is first opened
@@ -88,18 +88,16 @@ class ContactView(param.Parameterized):
                             sizing_mode="stretch_width", stylesheets=[TAB_ROW_CSS])
         self._stale: set[Scene] = set()
         self._show_figure(0)
-        self.tabs.param.watch(self._on_tab, ["active"])
         self._open_preset_tab()  # (a link to Fig. 8 shows Fig. 8)
         self.fig6_card = pn.Card(title="Fig. 6 in full: the six traction profiles "
                                  "(ψ = 2.414, τ₀ = π/6)", collapsed=True,
                                  sizing_mode="stretch_width", margin=6)
-        self.fig6_card.param.watch(self._on_fig6_card, "collapsed")
+        connect(self)
         self.refresh()
 
     # ------------------------------------------------------------------ state
 
-    @param.depends(*(f"state.{k}" for k in (*CONTACT_INPUTS, "tau")), watch=True)
-    def show_state(self) -> None:
+    def show_state(self, *events: param.parameterized.Event) -> None:
         """Show the state: refresh every scene if its contact is not the one shown, else
         what depends on tau if its tau is not the one shown, else nothing.
 
@@ -128,7 +126,8 @@ class ContactView(param.Parameterized):
         """Whether `scene` is on the page now (the curve scenes: their tab is open)."""
         return scene not in self.tabbed or self.tabbed[self.tabs.active] is scene
 
-    def _on_tab(self, event) -> None:
+    def show_tab(self, event: param.parameterized.Event) -> None:
+        """Tab `event.new` opened: its scene caught up and its figure in its pane."""
         if event.new not in range(len(self.tabbed)):  # (from a script: no such tab)
             return
         with held():
@@ -195,8 +194,7 @@ class ContactView(param.Parameterized):
 
     # ---------------------------------------------------------------- presets
 
-    @param.depends("state.preset", watch=True)
-    def _on_preset(self) -> None:
+    def show_preset(self, *events: param.parameterized.Event) -> None:
         """The selector, its note and the T(tau) family follow the state's preset ('' once
         left); a preset opens the tab of its figure (Figs. 4, 8, 9)."""
         self.controls.show_preset(self.state.preset, NOTES.get(self.state.preset, ""))
@@ -216,8 +214,8 @@ class ContactView(param.Parameterized):
         family = preset.family if preset else ()
         self.force.set_family([Contact(p, c.tau0, mu=c.mu, nu=c.nu) for p in family])
 
-    @param.depends("state.log_psi", watch=True)
-    def _on_log(self) -> None:
+    def show_log(self, *events: param.parameterized.Event) -> None:
+        """The impulse curve on the log psi axis, or not (the state's `log_psi`)."""
         self.impulse.set_log(self.state.log_psi)
         self._stale.add(self.impulse)
         if self.is_shown(self.impulse):
@@ -225,7 +223,7 @@ class ContactView(param.Parameterized):
                 self.catch_up([self.impulse])
                 self._show_figure(self.tabbed.index(self.impulse))
 
-    def _on_fig6_card(self, event) -> None:
+    def show_fig6(self, event: param.parameterized.Event) -> None:
         """Build the six Fig. 6 plots when their card is first opened."""
         if not event.new and not self.fig6_card.objects:
             self.fig6_card.objects = [pn.pane.Bokeh(SmallMultiples().figure,
@@ -267,3 +265,53 @@ class ContactView(param.Parameterized):
         tau = self.animation.clock_tau() if self.state.playing else self.state.tau
         self.controls.downloads[key].filename = self.csv_filename(key, tau)
         return io.StringIO(self.csv_text(key, tau))
+
+
+def choose_preset(state: ExplorerState, event: param.parameterized.Event) -> None:
+    """A preset chosen in the menu: loaded into the state ('(custom)' changes nothing)."""
+    if event.new and event.new != state.preset:
+        state.apply_preset(event.new)
+
+
+def connect(view: ContactView) -> None:
+    """Every subscription of the contact feature, in the order they run for a change.
+
+    A value the user sets goes to the state (the widgets' own feeds and watchers); the
+    state corrects itself first (its own watchers, registered when it was made:
+    `ExplorerState._follow_inputs`, `_leave_preset`, `_leave_material`); then the view
+    shows it (`show_state` and the others below); then the widgets show the state's
+    values (a slider's own move comes back as the value it holds: nothing is sent).
+    The path of a slider move is docs/app.md's "How data flows"."""
+    s, ui = view.state, view.controls
+    # the state on screen
+    s.param.watch(view.show_state, [*CONTACT_INPUTS, "tau"])
+    s.param.watch(view.show_preset, "preset")
+    s.param.watch(view.show_log, "log_psi")
+    s.param.watch(lambda e: ui.tau_slider.set_range(*played(view.shown, e.new), s.tau),
+                  "period")
+    # the user's values into the state (`ExplorerState.set_input`: the value and what
+    # follows from it in one batch; a value the state refuses changes nothing)
+    for name, slider in ui.sliders().items():
+        slider.feed(partial(s.set_input, name))
+    bind(ui.drive_select, s.param.drive)
+    bind(ui.speed_slider, s.param.speed)
+    bind(ui.log_box, s.param.log_psi)
+    bind(ui.period_box, s.param.period)
+    ui.preset_select.param.watch(partial(choose_preset, s), "value")
+    ui.reset_button.on_click(lambda _: (s.reset(), ui.clear_refusals()))
+    ui.play_button.param.watch(lambda _: view.animation.press(ui.play_button.shown),
+                               "clicks")
+    ui.step_button.on_click(lambda _: view.animation.step())
+    # the state's values into the sliders
+    for name, slider in ui.sliders().items():
+        s.param.watch(partial(show_value, slider), name)
+    # (the boxes the SI inputs replace say nothing of a value refused before)
+    s.param.watch(lambda _: ui.clear_refusals(), "physical")
+    # the view's own widgets
+    view.tabs.param.watch(view.show_tab, "active")
+    view.fig6_card.param.watch(view.show_fig6, "collapsed")
+
+
+def show_value(widget: param.Parameterized, event: param.parameterized.Event) -> None:
+    """`widget.value` set to the state's new value (nothing when it holds it already)."""
+    widget.value = event.new

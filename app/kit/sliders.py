@@ -21,6 +21,7 @@ several messages cost more server CPU (`docs/deploy.md`, "Load").
 from __future__ import annotations
 
 import asyncio
+import logging
 from collections.abc import Callable
 from typing import ClassVar
 
@@ -37,6 +38,8 @@ from app.kit.batch import held
 from app.kit.style import FOCUS_RING
 from app.kit.texts import WrittenHTML
 from app.kit.widgets import ERROR_STYLE, finite, show_later, text_html, typed_value
+
+log = logging.getLogger(__name__)
 
 #: JavaScript of `LabelledSlider`: the input shows the model's range, step, value, name
 #: and state (the range first: a value outside the old range would be clamped to it).
@@ -291,6 +294,20 @@ class ExactSlider(pn.viewable.Viewer):
             return
         with set_curdoc(doc), unlocked():
             self._apply(self._due)
+
+    def feed(self, put: Callable[[float], None]) -> None:
+        """Give each new `value` to `put` (e.g. a state's setter): the slider's moves, the
+        values typed in the box and those set from Python.  A value `put` refuses
+        (ValueError: outside the owner's domain, from a script) is logged at debug level
+        only (a client cannot fill the log) and the slider shows its last value again."""
+        def give(event: param.parameterized.Event) -> None:
+            try:
+                put(event.new)
+            except ValueError as err:
+                log.debug("refused %.80r from the browser: %s", event.new, err)
+                show_later(self, event.old)
+
+        self.param.watch(give, "value")
 
     def moved(self, value: float) -> None:
         """Set `value` as a move of the slider: its range is not narrowed (a range
