@@ -14,8 +14,12 @@ measured interleaved).
 3. speeds: how the cost grows with the number of speeds per thrust-speed curve
    (``thrust_speed_curve`` with n speeds, per contact), against the kernel's design.
 4. scaling: designs per second per worker of a study on a LocalCluster of 1 and of 2
-   worker processes (the same study; both clusters up and warmed, then timed in turn),
-   and the strong scaling t(1) / t(2), with the machine's load average.
+   worker processes (``core.motor.study.run.local_cluster``; the same study; both
+   clusters up and every worker warmed, then ``--repeat`` paired rounds, each timing
+   both back to back, their order alternating), and the strong scaling t(1) / t(2) of
+   each round: the best, the median, and that of the round the other jobs on the
+   machine loaded least, with the CPU seen during each run (/proc/stat's busy cores
+   less this process tree's: the other jobs' cores; and the hypervisor's steal).
 5. projection: the wall time of a 1e7-design study on 64 cores, from the measured
    cost per design per worker and the measured parallel efficiency.
 
@@ -60,8 +64,9 @@ MOTORS = (Motor(ROD, R=5e-3, G=24e9, nu=0.31, mu=0.2, preload=0.05),
 #: (motor, x0, load): two rotors at 8 points of the rod, under 1 mN.
 DESIGNS = [(m, float(x), 1e-3) for m in MOTORS for x in np.linspace(-0.016, -0.0002, 8)]
 K, HARD = 1e-6, 5e9
-#: The study of the scaling figure: 48 x 20 designs, 12 chunks of 80 (the client writes
-#: ~30 ms per chunk here: small chunks would time the client, not the workers).
+#: The study of the scaling figure: 96 x 20 designs, 24 chunks of 80 (~0.4 s each: the
+#: client writes ~20 ms of CPU per chunk, so much smaller chunks would time the client,
+#: and far fewer would leave one worker idle at the end).
 SCALING_TOML = """
 [study]
 name = "bench"
@@ -71,7 +76,7 @@ load = 1e-3
 [axes.x0]
 start = -0.016
 stop = -0.0002
-num = 48
+num = 96
 [axes.preload]
 start = 0.02
 stop = 0.5
@@ -178,47 +183,118 @@ def speeds(repeat: int) -> dict[str, object]:
     return res
 
 
-def scaling(repeat: int) -> dict[str, float]:
+def _cpu_jiffies() -> tuple[int, int, int]:
+    """(busy, steal, total) jiffies of the machine since boot (/proc/stat's cpu line)."""
+    with open("/proc/stat") as f:
+        v = [int(x) for x in f.readline().split()[1:]]
+    user, nice, system, _idle, _iowait, irq, softirq, steal = v[:8]
+    return user + nice + system + irq + softirq, steal, sum(v[:8])
+
+
+def _own_cpu() -> float:
+    """CPU seconds of this process and its children (the LocalClusters' nannies and
+    workers), living or reaped."""
+    import psutil
+
+    me = psutil.Process()
+    total = sum(me.cpu_times()[:4])
+    for child in me.children(recursive=True):
+        try:
+            total += sum(child.cpu_times()[:2])
+        except psutil.Error:
+            pass
+    return total
+
+
+def _timed(run: Callable[[], float]) -> dict[str, float]:
+    """run()'s wall time (s) and, over it, the machine's busy cores, ours (this process
+    tree) and the others' (busy - ours), and the hypervisor's steal (cores)."""
+    cpus = os.cpu_count() or 1
+    b0, s0, t0 = _cpu_jiffies()
+    own0 = _own_cpu()
+    w0 = time.perf_counter()
+    seconds = run()
+    wall = time.perf_counter() - w0
+    b1, s1, t1 = _cpu_jiffies()
+    own = _own_cpu() - own0
+    total = max(t1 - t0, 1)
+    busy = cpus * (b1 - b0) / total
+    return {"seconds": seconds, "busy_cores": busy, "own_cores": own / wall,
+            "other_cores": max(busy - own / wall, 0.0), "steal_cores": cpus * (s1 - s0) / total}
+
+
+def scaling(repeat: int) -> dict[str, object]:
+    """Strong scaling: the same study on a LocalCluster of 1 and of 2 worker processes,
+    both up and warmed (every worker has evaluated a chunk, its kernels loaded), then
+    ``repeat`` paired rounds, each timing both clusters back to back (their order
+    alternating), with the CPU load seen during each run."""
     from contextlib import ExitStack
 
-    from distributed import Client, LocalCluster
+    from distributed import Client
 
     from core.motor.study import run_study, spec_from_toml
-    from core.motor.study.run import local_cluster_options
+    from core.motor.study.chunks import evaluate_chunk
+    from core.motor.study.run import local_cluster
 
     spec = spec_from_toml(SCALING_TOML)
-    warm = spec_from_toml(SCALING_TOML.replace("num = 48", "num = 2")
+    warm = spec_from_toml(SCALING_TOML.replace("num = 96", "num = 2")
                           .replace("num = 20", "num = 2"))
-    out: dict[str, float] = {}
-    best = {1: math.inf, 2: math.inf}
+    rounds: list[dict[str, object]] = []
     with tempfile.TemporaryDirectory() as tmp, ExitStack() as stack:
         clients = {}
-        for workers in (1, 2):  # both clusters up, warmed, then timed in turn
-            cluster = stack.enter_context(LocalCluster(**local_cluster_options(workers, "1GiB")))
+        for workers in (1, 2):
+            cluster = stack.enter_context(local_cluster(workers, "1GiB"))
             clients[workers] = stack.enter_context(Client(cluster))
+            clients[workers].run(evaluate_chunk, warm, (0, 0))  # on every worker
             run_study(warm, Path(tmp) / f"warm{workers}", client=clients[workers])
-        load = os.getloadavg()[0]
         for r in range(repeat):
-            for workers, client in clients.items():
-                run = run_study(spec, Path(tmp) / f"w{workers}-{r}", client=client)
-                best[workers] = min(best[workers], run.seconds)
-    for workers in (1, 2):
-        out[f"seconds_{workers}"] = best[workers]
-        out[f"designs_per_second_per_worker_{workers}"] = spec.size / best[workers] / workers
-    out["strong_scaling"] = out["seconds_1"] / out["seconds_2"]
-    out["designs"] = spec.size
-    out["load_average"] = load
-    print(f"scaling: {spec.size} designs in chunks of {spec.block} (load average {load:.1f} "
-          f"on {os.cpu_count()} CPUs): 1 worker {out['seconds_1']:.1f} s "
-          f"({out['designs_per_second_per_worker_1']:.0f} designs/s per worker), 2 workers "
-          f"{out['seconds_2']:.1f} s ({out['designs_per_second_per_worker_2']:.0f} designs/s "
-          f"per worker): strong scaling {out['strong_scaling']:.2f}x")
+            row: dict[str, object] = {}
+            for workers in ((1, 2) if r % 2 == 0 else (2, 1)):
+                client = clients[workers]
+                folder = Path(tmp) / f"w{workers}-{r}"
+                row[str(workers)] = _timed(
+                    lambda c=client, f=folder: run_study(spec, f, client=c).seconds)
+            row["ratio"] = row["1"]["seconds"] / row["2"]["seconds"]
+            rounds.append(row)
+            print(f"  round {r}: 1 worker {row['1']['seconds']:.2f} s, 2 workers "
+                  f"{row['2']['seconds']:.2f} s: {row['ratio']:.2f}x; other jobs' CPU "
+                  f"{row['1']['other_cores']:.2f} / {row['2']['other_cores']:.2f} cores, "
+                  f"steal {row['1']['steal_cores']:.2f} / {row['2']['steal_cores']:.2f}")
+    ratios = [float(row["ratio"]) for row in rounds]
+    best = {w: min(float(row[str(w)]["seconds"]) for row in rounds) for w in (1, 2)}
+    others = [max(float(row["1"]["other_cores"]), float(row["2"]["other_cores"]))
+              for row in rounds]
+    quiet = int(np.argmin(others))
+    out: dict[str, object] = {
+        "designs": spec.size, "chunks": math.prod(math.ceil(n / c) for n, c in
+                                                  zip(spec.shape, spec.chunk_shape,
+                                                      strict=True)),
+        "cpus": os.cpu_count(), "rounds": rounds,
+        "seconds_1": best[1], "seconds_2": best[2],
+        "designs_per_second_per_worker_1": spec.size / best[1],
+        "designs_per_second_per_worker_2": spec.size / best[2] / 2,
+        "strong_scaling_best": max(ratios), "strong_scaling_median": float(np.median(ratios)),
+        "strong_scaling_of_best_times": best[1] / best[2],
+        "strong_scaling_quietest_round": ratios[quiet],
+        "other_cores_quietest_round": others[quiet],
+        "other_cores_median": float(np.median(others)),
+        "load_average": os.getloadavg()[0],
+    }
+    out["strong_scaling"] = out["strong_scaling_median"]
+    print(f"scaling: {spec.size} designs in {out['chunks']} chunks of {spec.block}, "
+          f"{repeat} paired rounds on {os.cpu_count()} CPUs: best 1 worker {best[1]:.2f} s "
+          f"({out['designs_per_second_per_worker_1']:.0f} designs/s per worker), best 2 "
+          f"workers {best[2]:.2f} s ({out['designs_per_second_per_worker_2']:.0f} designs/s "
+          f"per worker); strong scaling best round {out['strong_scaling_best']:.2f}x, median "
+          f"{out['strong_scaling_median']:.2f}x, quietest round {ratios[quiet]:.2f}x (other "
+          f"jobs' CPU {others[quiet]:.2f} cores; median over rounds "
+          f"{out['other_cores_median']:.2f}); load average {out['load_average']:.1f}")
     return out
 
 
-def projection(scale: dict[str, float]) -> dict[str, float]:
-    per_design = 1.0 / scale["designs_per_second_per_worker_1"]  # s per design per worker
-    efficiency = scale["strong_scaling"] / 2.0
+def projection(scale: dict[str, object]) -> dict[str, float]:
+    per_design = 1.0 / float(scale["designs_per_second_per_worker_1"])  # s/design/worker
+    efficiency = float(scale["strong_scaling_median"]) / 2.0
     designs, cores = 1e7, 64
     hours = designs * per_design / (cores * efficiency) / 3600.0
     print(f"projection: 1e7 designs x {per_design * 1e3:.2f} ms per design per worker / "

@@ -25,7 +25,7 @@ from core.motor.study import (
 )
 from core.motor.study.__main__ import main
 from core.motor.study.chunks import VARIABLES, chunk_ids, chunk_slices, evaluate_chunk
-from core.motor.study.run import local_cluster_options
+from core.motor.study.run import local_cluster
 
 distributed = pytest.importorskip("distributed")
 pytestmark = pytest.mark.slow  # a real cluster: ~30 s for the module on two cores
@@ -38,7 +38,7 @@ SPEC = StudySpec("t", (Axis.grid("x0", -0.012, -0.0005, 6),
 
 @pytest.fixture(scope="module")
 def client():
-    cluster = distributed.LocalCluster(**local_cluster_options(2, "1GiB"))
+    cluster = local_cluster(2, "1GiB")
     c = distributed.Client(cluster)
     try:
         yield c
