@@ -68,32 +68,44 @@ class Explorer(param.Parameterized):
         self.methods = MethodsScene()
         self.dem = DemCard()  # (a contact of its own: the DEM test cases)
         self.bem = BemCard(self.contact.shown, self.state.tau)  # (built when first opened)
-        self.contact.param.watch(lambda e: self.bem.update(e.new, self.state.tau), "shown")
-        self.state.param.watch(lambda e: self.bem.update(self.contact.shown, e.new), "tau")
         self.methods.update_contact(self.contact.shown)
-        self.contact.param.watch(lambda e: self.methods.update_contact(e.new), "shown")
         self.motor: MotorScene | None = None  # built when its card is first opened
         self.follow_motor = LabelledCheckbox(
             label="Show the rotor's contact (at x₀) in the plots above", value=False)
-        self.follow_motor.param.watch(self._on_follow, "value")
         self.motor_card = pn.Card(title="Motor: the rod, its thrust and speed (Fig. 1)",
                                   collapsed=True, sizing_mode="stretch_width", margin=6)
-        self.motor_card.param.watch(self._on_motor_card, "collapsed")
         self.message = pn.pane.HTML("", visible=False, sizing_mode="stretch_width",
                                     name="query_message", styles=MESSAGE_STYLE)
         self.show_messages(self.messages)
-        self.state.param.watch(self._on_inputs, list(CONTACT_INPUTS))
-        self.state.param.watch(lambda *_: self.write_url(),
-                               [*CONTACT_INPUTS, "tau", "log_psi", "preset", "material"])
         self.write_url()
-        if self._motor_query:  # a link to the motor opens it
-            self.motor_card.collapsed = False
         #: each plot's name and description, and the live region (`app.page.describe`)
         self.describer = Describer(self.contact, self.state)
         #: the contact as a lesson file that plays without a server (`app.contact.lesson`)
         self.lesson_download = pn.widgets.FileDownload(
             callback=self.lesson_file, filename="zharii_lesson.html",
             label="Download this lesson (works offline)", color="primary", width=310)
+        self.connect()
+        if self._motor_query:  # a link to the motor opens it
+            self.motor_card.collapsed = False
+
+    def connect(self) -> None:
+        """Every subscription of the page (the contact's own are
+        `app.contact.view.connect`; the Motor card's are made when it is built,
+        `_on_motor_card`; the plots' descriptions follow the contact in
+        `app.page.describe.Describer`)."""
+        c, s = self.contact, self.state
+        # the other features follow the contact on screen
+        c.param.watch(lambda e: self.bem.update(e.new, s.tau), "shown")
+        s.param.watch(lambda e: self.bem.update(c.shown, e.new), "tau")
+        c.param.watch(lambda e: self.methods.update_contact(e.new), "shown")
+        # the Motor card: built when first opened; its rotor's contact shown when asked
+        self.motor_card.param.watch(self._on_motor_card, "collapsed")
+        self.follow_motor.param.watch(self._on_follow, "value")
+        # the user's change of the contact: past messages done, the rotor no longer followed
+        s.param.watch(self._on_inputs, list(CONTACT_INPUTS))
+        # the URL: once per change (a move's parameters change in one batch)
+        s.param.watch(lambda *_: self.write_url(),
+                      [*CONTACT_INPUTS, "tau", "log_psi", "preset", "material"])
 
     # ---------------------------------------------------------------- messages
 
