@@ -3,7 +3,8 @@ around its current state, every figure of merit of each (`core.motor.designs.
 design_merits`), and the Pareto front of two merits (`core.motor.study.summary.pareto`).
 
 Pure functions of frozen values, no Panel: the view (`app.motor.map_view`) runs
-`compute` on the job runner and keeps the maps it has computed in a `MapCache`.
+`compute` on the job runner, one job per row block of a map (`blocks`, `assemble`), and
+keeps the maps it has computed in a `MapCache`.
 
 A map is a `MapRequest`: the card's state (display units, `MotorState.values()`) less
 the two axes' own values (a map does not depend on them: a click that loads one of its
@@ -146,21 +147,50 @@ class MapData:
         return int(np.argmin(np.abs(self.y - y))), int(np.argmin(np.abs(self.x - x)))
 
 
-def compute(request: MapRequest) -> MapData:
-    """Every merit of the map's designs, in one call of `design_merits` (on the runner:
-    the kernel releases the GIL).
+#: Designs per job of a map (``MapBlock``): a few rows, ~1-2 s of the runner here (a
+#: 60 x 60 map is 15 jobs of 4 rows), so that other sessions' jobs take their turns
+#: between a map's blocks.
+BLOCK_DESIGNS = 240
+
+
+@dataclass(frozen=True)
+class MapBlock:
+    """Rows ``start:stop`` of map ``request`` (one job of the runner)."""
+
+    request: MapRequest
+    start: int
+    stop: int
+
+
+def blocks(request: MapRequest) -> list[MapBlock]:
+    """The map's row blocks, in order: ``BLOCK_DESIGNS // size`` rows each (at least 1),
+    the last one what remains."""
+    n = request.size
+    rows = max(1, BLOCK_DESIGNS // n)
+    return [MapBlock(request, a, min(a + rows, n)) for a in range(0, n, rows)]
+
+
+def compute(request: MapRequest | MapBlock) -> MapData:
+    """Every merit of the map's designs, or of a block's rows (its ``y`` those rows'),
+    in one call of `design_merits` (on the runner: the kernel releases the GIL). Each
+    design is evaluated on its own, so a map assembled from its blocks (`assemble`)
+    equals the map computed at once, bit for bit.
 
     Parameters
     ----------
-    request : MapRequest
+    request : MapRequest or MapBlock
 
     Returns
     -------
     MapData
     """
+    block = request if isinstance(request, MapBlock) else None
+    request = block.request if block is not None else request
     others = dict(request.others)
     xs = axis_values(request.x, others, request.size)
     ys = axis_values(request.y, others, request.size)
+    if block is not None:
+        ys = ys[block.start:block.stop]
     X, Y = np.meshgrid(xs, ys)
     shape = X.shape
     motors, index, x0, load = [], [], [], []
@@ -187,6 +217,17 @@ def compute(request: MapRequest) -> MapData:
         psi[index], tau0[index] = out.psi, out.tau0
     return MapData(request, xs, ys, {k: v.reshape(shape) for k, v in merits.items()},
                    psi.reshape(shape), tau0.reshape(shape))
+
+
+def assemble(request: MapRequest, parts: list[MapData]) -> MapData:
+    """The map of `request` from its blocks' data (`compute` of each of `blocks`, in
+    order)."""
+    def rows(get) -> NDArray[np.float64]:
+        return np.concatenate([get(p) for p in parts], axis=0)
+
+    return MapData(request, parts[0].x, rows(lambda p: p.y),
+                   {name: rows(lambda p, n=name: p.merits[n]) for name in MERITS},
+                   rows(lambda p: p.psi), rows(lambda p: p.tau0))
 
 
 def pareto_front(data: MapData, first: str, second: str) -> list[tuple[int, int]]:

@@ -4,7 +4,9 @@ hover with every merit of the design under the pointer, the current design marke
 Pareto front of two merits beside it, and a click that loads a design into the card.
 
 The map's data are `app.motor.map_data`'s: computed on the process's job runner
-(`app.kit.jobs.RUNNER`, one job per map, the runner's turns between sessions), kept in
+(`app.kit.jobs.RUNNER`, one job per block of a few rows, submitted in turn, so that the
+runner's turns between sessions come between a map's blocks; a newer map replaces the
+block waiting), kept in
 the card's `MapCache` so that a map already computed (e.g. after a click loaded one of
 its designs) is shown at once. Sizes beyond `map_data.SIZE_MAX` are refused with a
 message naming the design study's command line. A click goes through the card's own
@@ -67,6 +69,8 @@ class DesignMap(pn.viewable.Viewer):
         #: the map requested last (None: refused) and the map on screen
         self.request: md.MapRequest | None = None
         self.data: md.MapData | None = None
+        #: the map whose blocks are being computed, and its chain's token (None: none)
+        self._computing: tuple[md.MapRequest, object] | None = None
         self._closed = False
         self._widgets()
         self._figures()
@@ -171,28 +175,52 @@ class DesignMap(pn.viewable.Viewer):
         self.request = request
         data = self.cache.get(request)
         if data is not None:
+            if self._computing is not None:  # another map's blocks end here
+                self._computing = None
+                RUNNER.cancel(self)
             self.progress.busy = False
             self.show(data)
             return
-        n = request.size
+        if self._computing is not None and self._computing[0] == request:
+            return  # its blocks are on their way
         self.progress.busy = True
-        self.status.object = text_html(f"computing a {n} × {n} map ({n * n} designs)…")
-        RUNNER.submit(self, partial(md.compute, request), partial(self._done, request))
+        self._computing = (request, object())
+        self._submit(self._computing, md.blocks(request), [])
 
-    def _done(self, request: md.MapRequest, outcome: md.MapData | Exception) -> None:
-        if not isinstance(outcome, Exception):
-            self.cache.put(outcome)
-        if request != self.request:
-            return  # a newer map is on its way (this one is kept)
-        self.progress.busy = False
+    def _submit(self, chain: tuple[md.MapRequest, object], todo: list[md.MapBlock],
+                parts: list[md.MapData]) -> None:
+        """Ask the runner for the next block of the map (one job; a newer map's first
+        block replaces it while it waits), saying how far the map is."""
+        n = chain[0].size
+        done, total = len(parts), len(parts) + len(todo)
+        part = f", block {done + 1} of {total}" if total > 1 else ""
+        self.status.object = text_html(f"computing a {n} × {n} map ({n * n} designs{part})…")
+        RUNNER.submit(self, partial(md.compute, todo[0]),
+                      partial(self._done, chain, todo, parts))
+
+    def _done(self, chain: tuple[md.MapRequest, object], todo: list[md.MapBlock],
+              parts: list[md.MapData], outcome: md.MapData | Exception) -> None:
+        if chain is not self._computing or self._closed:
+            return  # a newer map is on its way, or the session ended: no more blocks
         if isinstance(outcome, Exception):
+            self._computing = None
+            self.progress.busy = False
             self.status.object = text_html(f"⚠ could not compute the map: {outcome}")
             return
-        self.show(outcome)
+        parts = [*parts, outcome]
+        if len(todo) > 1:
+            self._submit(chain, todo[1:], parts)
+            return
+        self._computing = None
+        data = md.assemble(chain[0], parts)
+        self.cache.put(data)
+        self.progress.busy = False
+        self.show(data)
 
     def close(self) -> None:
         """The session ended: drop the waiting map; ask for nothing more."""
         self._closed = True
+        self._computing = None
         RUNNER.cancel(self)
 
     # -------------------------------------------------------------- drawing

@@ -182,3 +182,55 @@ def test_a_click_the_card_refuses_says_why_and_changes_nothing(scene, monkeypatc
     wait()
     assert m.data.request.size == 6 and dict(m.data.request.others)["L"] == 10.0
     np.testing.assert_allclose(m.data.x[[0, -1]], [-9.99, 9.99], rtol=1e-15)
+
+
+def test_a_map_from_its_row_blocks_is_the_map_computed_at_once(monkeypatch) -> None:
+    """A map is computed in row blocks (one runner job each): assembled, they are the
+    map computed in one call, bit for bit."""
+    monkeypatch.setattr(md, "BLOCK_DESIGNS", 14)  # 7 x 7: blocks of 2 rows, the last 1
+    request = md.MapRequest.of(MotorState().values(), "x0", "N", 7)
+    parts = md.blocks(request)
+    assert [(b.start, b.stop) for b in parts] == [(0, 2), (2, 4), (4, 6), (6, 7)]
+    whole = md.compute(request)
+    got = md.assemble(request, [md.compute(b) for b in parts])
+    np.testing.assert_array_equal(got.x, whole.x)
+    np.testing.assert_array_equal(got.y, whole.y)
+    for name in MERITS:
+        np.testing.assert_array_equal(got.merits[name], whole.merits[name])
+    np.testing.assert_array_equal(got.psi, whole.psi)
+    assert [len(md.blocks(md.MapRequest.of(MotorState().values(), "x0", "N", n)))
+            for n in (6, 60)] == [3, 60]  # rows of 14 // n designs, at least one
+
+
+def finished(m) -> None:
+    """Wait until the card's map has all its blocks (each asks for the next when done)."""
+    for _ in range(100):
+        wait()
+        if m._computing is None:
+            return
+    raise AssertionError("the map's blocks did not finish")
+
+
+def test_the_card_computes_a_map_block_by_block_and_a_newer_map_replaces_it(
+        scene, monkeypatch) -> None:
+    m = opened(scene)
+    monkeypatch.setattr(md, "BLOCK_DESIGNS", 12)  # 6 x 6: 3 blocks of 2 rows
+    with Watched(RUNNER) as jobs:
+        m.x_select.value = "A"
+        finished(m)
+    assert jobs.ran.count(m) == 3  # one job per block
+    expected = md.compute(md.MapRequest.of(scene.state.values(), "A", "N", 6))
+    assert m.data.request == expected.request and m.cache.get(expected.request) is m.data
+    np.testing.assert_array_equal(m.data.merits["stall_thrust"], expected.merits["stall_thrust"])
+    release = threading.Event()
+    compute = md.compute
+    monkeypatch.setattr(md, "compute", lambda r: (release.wait(30), compute(r))[1])
+    with Watched(RUNNER) as jobs:
+        m.x_select.value = "R"  # its first block runs, held ...
+        assert "block 1 of 3" in m.status.object and m.progress.busy
+        m.x_select.value = "f"  # ... a newer map replaces the blocks to come
+        release.set()
+        finished(m)
+    assert m.data.request.x == "f" and not m.progress.busy
+    assert m.cache.get(md.MapRequest.of(scene.state.values(), "R", "N", 6)) is None
+    assert jobs.ran.count(m) <= 4  # R's running block at most, then f's three
