@@ -16,8 +16,7 @@ from app.contact.state import (
     QUERY_KEYS,
     SI_KEYS,
     ExplorerState,
-    drive_angle,
-    drive_ratio,
+    material_values,
     parse_flag,
     parse_tau,
     parse_value,
@@ -62,17 +61,15 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
     if "preset" in flat:
         name = flat["preset"]
         if name in PRESETS:
-            p = PRESETS[name]
-            values.update(psi=p.psi, tau0=p.tau0, mu=0.2, nu=0.3, tau=p.tau, log_psi=p.log_psi,
-                          theta=drive_angle(p.psi, 0.2, 0.3), preset=name)
+            values.update(PRESETS[name].values(name))
+            del values["physical"]  # (a link's own physical flag, if any, decides)
         else:
             messages.append(f"preset = {name!r} is unknown (known: {', '.join(PRESETS)})")
 
     if "material" in flat:
         name = flat["material"]
         if name in MATERIALS:
-            m = MATERIALS[name]
-            values.update(material=name, G=m["G"], nu=m["nu"], mu=m["mu"], physical=True)
+            values.update(material_values(name))
         elif name == "custom":
             values["material"] = name
         else:
@@ -106,13 +103,14 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
                         f"drive = angle")
         del values["theta"]
     elif values.get("drive") == "angle" and not values.get("physical"):
-        theta, mu, nu = (values.get(k, ExplorerState.param[k].default)
-                         for k in ("theta", "mu", "nu"))
-        if "psi" in values and drive_angle(values["psi"], mu, nu) == theta:
+        scratch = ExplorerState(**{k: values[k] for k in ("psi", "theta", "mu", "nu")
+                                   if k in values}, drive="angle")
+        theta = scratch.theta
+        if "psi" in values and scratch.drive_psi() == values["psi"]:
             values["theta"] = theta  # (psi gives theta: kept, as ExplorerState.drive_psi)
         else:
             try:
-                psi = parse_value("psi", repr(drive_ratio(theta, mu, nu)))
+                psi = parse_value("psi", repr(scratch.drive_psi()))
             except ValueError as err:
                 messages.append(f"the drive angle is not applied: {err}")
                 values["drive"] = "psi"
@@ -124,10 +122,10 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
                 values.update(psi=psi, theta=theta)
 
     if values.get("physical"):
-        inputs = {k: values.get(k, ExplorerState.param[k].default)
-                  for k in (*SI_KEYS, "mu", "nu")}
+        scratch = ExplorerState(**{k: values[k] for k in (*SI_KEYS, "mu", "nu")
+                                   if k in values}, physical=True)
         try:
-            c = Contact.from_physical(**inputs)
+            c = scratch.contact()
         except ValueError as err:
             messages.append(f"the physical inputs are not applied: {err}")
             values["physical"] = False

@@ -153,6 +153,14 @@ class Preset:
     log_psi: bool = False
     family: tuple[float, ...] = ()  # further psi values overlaid on T(tau) (Fig. 7)
     tab: str = "force"  # the curve tab that shows its figure (a scene's name)
+    mu: float = 0.2  # friction and Poisson ratio of every figure of the paper
+    nu: float = 0.3
+
+    def values(self, name: str) -> dict:
+        """The state's parameters this preset (named `name`) sets (`apply_preset`)."""
+        return dict(physical=False, psi=self.psi, tau0=self.tau0, mu=self.mu, nu=self.nu,
+                    tau=self.tau, theta=drive_angle(self.psi, self.mu, self.nu),
+                    log_psi=self.log_psi, preset=name)
 
 
 PRESETS: dict[str, Preset] = {
@@ -177,6 +185,13 @@ PRESETS: dict[str, Preset] = {
 }
 
 DEFAULT_PRESET = "fig6e"
+
+
+def material_values(name: str) -> dict:
+    """The state's parameters material `name` (a key of `core.MATERIALS`) sets: its G
+    (Pa), nu and mu, the physical inputs on (`ExplorerState.apply_material`)."""
+    m = MATERIALS[name]
+    return dict(material=name, G=m["G"], nu=m["nu"], mu=m["mu"], physical=True)
 
 
 class ExplorerState(param.Parameterized):
@@ -297,7 +312,7 @@ class ExplorerState(param.Parameterized):
         is kept while its contact plays, steps or is scrubbed)."""
         p = PRESETS[name]
         return not self.physical and (self.psi, self.tau0, self.mu, self.nu) == (
-            p.psi, p.tau0, 0.2, 0.3)
+            p.psi, p.tau0, p.mu, p.nu)
 
     @param.depends("psi", "tau0", "mu", "nu", "physical", watch=True)
     def _leave_preset(self) -> None:
@@ -309,9 +324,7 @@ class ExplorerState(param.Parameterized):
 
     def apply_preset(self, name: str) -> None:
         """Load the parameters of preset `name` (a key of PRESETS); KeyError if unknown."""
-        p = PRESETS[name]
-        self.param.update(physical=False, psi=p.psi, tau0=p.tau0, mu=0.2, nu=0.3, tau=p.tau,
-                          theta=drive_angle(p.psi, 0.2, 0.3), log_psi=p.log_psi, preset=name)
+        self.param.update(**PRESETS[name].values(name))
 
     def reset(self) -> None:
         """Back to the defaults (the default preset, speed 1, the default physical inputs
@@ -326,8 +339,7 @@ class ExplorerState(param.Parameterized):
         """Copy G (Pa), nu and mu of `core.MATERIALS[name]` into the state and switch the
         physical inputs on (a material is a physical contact's; it never changes mu and
         nu of a dimensionless one unseen); KeyError if unknown."""
-        m = MATERIALS[name]
-        self.param.update(material=name, G=m["G"], nu=m["nu"], mu=m["mu"], physical=True)
+        self.param.update(**material_values(name))
 
     @param.depends("G", "nu", "mu", watch=True)
     def _leave_material(self) -> None:
