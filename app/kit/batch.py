@@ -17,8 +17,7 @@ def held() -> Iterator[None]:
     handling of an event, a served slider's move (`ExactSlider`) or an outer `held`.
 
     Entering Panel's hold again there sends nothing sooner, yet costs: each exit of a
-    nested hold walks every change held so far (~2 % of a psi move's server CPU, for
-    the ten nested holds of a move)."""
+    nested hold walks every change held so far."""
     doc = pn.state.curdoc
     if doc is not None and doc.callbacks.hold_value:
         yield

@@ -34,7 +34,7 @@ def show(source: ColumnDataSource, data: dict[str, Any]) -> None:
 def same(held: Any, new: Any) -> bool:
     """Whether column `new` is column `held`: numeric arrays of one dtype and shape, bit
     for bit (a column of NaN held already is the same, -0.0 is not 0.0; a comparison of
-    the bytes, ~10 times faster than numpy's element by element for a plot's columns,
+    the bytes, faster than numpy's element by element for a plot's columns,
     `InlineColumn`s above all), lists of text equal; others equal in value
     (`np.array_equal`)."""
     if isinstance(held, np.ndarray) and isinstance(new, np.ndarray) \

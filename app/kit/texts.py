@@ -2,19 +2,19 @@
 
 A psi move rewrites the four plots' descriptions and the table of derived quantities.
 Panel's `HTML` pane recomputes all its model's properties, and builds new stylesheet
-models, on every change of its `object` (about 2 ms of server CPU on these machines); a
-Bokeh `Div` costs the server little (0.02 ms) but BokehJS renders a Div anew on every
-change of its text and lays out the whole page again (30 ms more per move in the
-browser, `benchmarks/app/app_latency.py --revs`).  These are `ReactiveHTML`s whose text
-is a property of their data model: a change sends that property and a few lines of
-JavaScript write it into the elements as text (never markup), and nothing is laid out
-again.
+models, on every change of its `object`; a Bokeh `Div` costs the server little, but
+BokehJS renders a Div anew on every change of its text and lays out the whole page again
+(`python -m benchmarks.app.app_latency --revs` measures the difference in the browser).
+These are `ReactiveHTML`s whose text is a property of their data model: a change sends
+that property and a few lines of JavaScript write it into the elements as text (never
+markup), and nothing is laid out again.
 
-Even a `ReactiveHTML`'s change costs Panel about 0.8 ms of server CPU (it recomputes the
-component's design, its stylesheets among them, on every change of any property).
-`WrittenHTML.write` writes the changed parameters straight into the component's Bokeh
-data model in the current document (0.05 ms): the same message, the same property,
-without Panel's recomputation, and the parameter holds what the page shows.
+Even a `ReactiveHTML`'s change makes Panel recompute the component's design (its
+stylesheets among them) on every change of any property.  `WrittenHTML.write` writes the
+changed parameters straight into the component's Bokeh data model in the current
+document: the same message, the same property, without Panel's recomputation (the
+server CPU of a move: `python -m benchmarks.app.move_cost`), and the parameter holds
+what the page shows.
 """
 
 from __future__ import annotations
@@ -59,7 +59,7 @@ class WrittenHTML(ReactiveHTML):
     `write(**values)` sets the parameters, so that each always holds what the page shows,
     and writes those that changed into the component's data model in the current
     document without Panel's watchers (`write_past_panel`): the same message, the same
-    property, without Panel's recomputation of the component (~0.8 ms a change).
+    property, without Panel's recomputation of the component.
 
     The data model carries the component's `name`, by which `write` finds it in the
     document (Bokeh indexes the models by name): give each a name of its own in its
@@ -101,10 +101,10 @@ class WrittenHTML(ReactiveHTML):
 class PaneText:
     """The text of a pane whose Bokeh model's `text` is its object as given (a `LaTeX`
     pane rendered by KaTeX), written past Panel's update of the pane: Panel would build
-    the pane's stylesheet models anew (~0.6 ms of server CPU) for the same message.
+    the pane's stylesheet models anew for the same message.
 
     The pane's model is found in the current document by its tag `tag`: a search of the
-    whole document (~1.5 ms), so once per document, and again only while it is not
+    whole document, so once per document, and again only while it is not
     found and the document has gained models since (a write while the page is being
     built comes before the pane is rendered)."""
 
@@ -194,8 +194,7 @@ class TextTable(WrittenHTML):
     `write(rows=...)` changes the rows; `cells` holds them as the page shows them.
 
     The rows travel as one text, their JSON (`cells`, `pairs_json`): a list of lists
-    costs param and Bokeh a walk of every item at each change (~0.3 ms of server CPU for
-    the twenty rows of the derived quantities), a text one comparison."""
+    costs param and Bokeh a walk of every item at each change, a text one comparison."""
 
     caption = param.String(default="")
     columns = param.List(default=["Quantity", "Value"], item_type=str)

@@ -2,7 +2,7 @@
 
 Bokeh sends each numpy column of a ColumnDataSource change as a binary buffer of its
 own, after the message: two websocket frames per column (a reference, then the bytes).
-A psi move changes 19 float columns (about 45 kB), so the browser took ~40 frames,
+A psi move changes some twenty float columns, so the browser took some forty frames,
 each a task of its own, to receive one update.  An `InlineColumn` serialises itself
 into the message (base64 of a gzip stream: the representation Bokeh uses when buffers
 are not deferred, which BokehJS always gunzips), so the whole update is one message of
@@ -10,18 +10,15 @@ three frames; the browser decodes the same float64 bytes, so the values it plots
 bit for bit those computed here.
 
 The gzip stream is stored, not compressed: float64 curves hardly compress, and
-compressing them costs server CPU on every move.  Measured on the columns of one psi
-move (T(τ) and the traction profile, 21.9 kB of float64): Bokeh's default level 2 takes
-0.42-0.47 ms for 24.1-24.4 kB of base64, level 0 takes 0.05 ms for 29.5 kB (+21 %
-bytes, -0.4 ms of server CPU per move; `python -m benchmarks.app.wire_cost`).  The
-stored stream is written here (`stored_gzip`: the gzip header, the bytes in stored
+compressing them costs server CPU on every move (`python -m benchmarks.app.wire_cost`
+prints the bytes and the CPU of each compression level on the columns of one psi move).
+The stored stream is written here (`stored_gzip`: the gzip header, the bytes in stored
 deflate blocks, their CRC-32 and length; RFCs 1951 and 1952) without setting up a
-compressor for each column (zlib allocates ~256 kB of state per call); for a column of
-up to 8,000 floats it is byte for byte what `gzip.compress(data, compresslevel=0,
-mtime=1)` gives (zlib cuts longer data into blocks of other sizes).
+compressor for each column (zlib allocates its state on every call); for a column of up
+to 8,000 floats it is byte for byte what `gzip.compress(data, compresslevel=0,
+mtime=1)` gives (zlib cuts longer data into blocks of other sizes).  What it changes in
+the browser: `python -m benchmarks.app.app_latency --revs`.
 
-Measured (paired A/B runs, two servers, moves alternated, 30 per arm): a psi move to
-all plots updated 118 -> 106, 128 -> 113 and 110 -> 103 ms median in three runs.
 Large one-off payloads (the player's frame store) keep Bokeh's binary buffers: base64
 is a third larger.
 """
