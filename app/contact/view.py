@@ -1,12 +1,14 @@
 """The contact feature: the state of one contact shown in every scene, and its controls.
 
-`ContactView` shows an `ExplorerState` (what the user set) in the scenes (what is shown).
-The path from a slider to a plot is short (docs/app.md, "How data flows"):
+`ContactView` shows an `ExplorerState` (what the user set) in the scenes (what is shown);
+`connect` makes every subscription of the feature, in one place.  The path from a slider
+to a plot (docs/app.md, "How data flows"; `tests/app/test_slider_path.py` traces it):
 
-    ExactSlider.value  --bind, set_input-->  ExplorerState.psi  --param.depends-->  show_state
-      -> ContactView.refresh -> TractionScene.update_tau -> source.data (core's numbers)
+    SliderModel.value --ExactSlider.follow, feed--> ExplorerState.set_input (psi, theta)
+      --watch--> ContactView.show_state -> refresh -> TractionScene.update_tau
+      -> app.kit.changes.show -> source.data (core's numbers)
 
-`show_state` depends on every input of the contact and on tau: it rebuilds the
+`show_state` watches every input of the contact and tau: it rebuilds the
 `core.Contact` and refreshes every scene when the contact differs from the one shown,
 refreshes only what depends on tau when only tau differs, and does nothing when both are
 shown; the state corrects itself first (psi and tau0 derived from SI inputs, theta
