@@ -4,7 +4,7 @@
 `connect` makes every subscription of the feature, in one place.  The path from a slider
 to a plot (docs/app.md, "How data flows"; `tests/app/test_slider_path.py` traces it):
 
-    SliderModel.value --ExactSlider.follow, feed--> ExplorerState.set_input (psi, theta)
+    SliderModel.value --ExactSlider.take_move, feed--> ExplorerState.set_input (psi, theta)
       --watch--> ContactView.show_state -> refresh -> TractionScene.update_tau
       -> app.kit.changes.show -> source.data (core's numbers)
 

@@ -10,7 +10,7 @@ parse function).  A refused entry changes nothing and the box shows the last goo
 again; a good value outside the slider's range widens the range to show it.
 
 Its slider's values are a `SliderModel`; the browser's moves arrive as Bokeh changes of
-that model's `value`, taken by one public ``on_change`` (`ExactSlider.follow`, as
+that model's `value`, taken by one public ``on_change`` (`ExactSlider.take_move`, as
 demo.bokeh.org's apps take a widget's value), and applied inside `panel.io.unlocked`
 (or `panel.io.hold`): everything a move changes (the box, and what watches `value`: the
 plots, the readout) goes to the browser as one message.  Bokeh builds each message's
@@ -122,7 +122,7 @@ class SliderModel(DataModel):
 
     The browser's range input (`DirectSlider`) draws it and writes its moves into it
     (`value`); Bokeh sends that change to the server, where the slider takes it with
-    the model's public ``on_change`` (`ExactSlider.follow`).  The server's changes
+    the model's public ``on_change`` (`ExactSlider.take_move`).  The server's changes
     (a typed value, a preset, a widened range) are set on it and Bokeh sends them: one
     model, one property per quantity, each change sent once, the browser's own move
     never sent back to it (Bokeh does not echo a change to the client that made it, and
@@ -194,7 +194,7 @@ class ExactSlider(pn.viewable.Viewer):
     `parse(text)` returns the value a typed text stands for, or raises ValueError with
     the message to show.  `value` is the one to watch or set; `disabled` greys out both.
     `model` is the `SliderModel` the slider draws (tagged ``{name}-value``); the
-    browser's moves of the slider arrive as changes of its `value` (`follow`).
+    browser's moves of the slider arrive as changes of its `value` (`take_move`).
     `name` names the slider's and the box's models (CSS classes ``slider-{name}``,
     ``entry-{name}``, tags ``{name}-slider``, ``{name}-entry``) and the message's pane.
     """
@@ -236,7 +236,7 @@ class ExactSlider(pn.viewable.Viewer):
         self._message = pn.pane.HTML("", visible=False, styles=ERROR_STYLE,
                                      margin=(0, 8), sizing_mode="stretch_width",
                                      name=name and f"{name}_error")
-        self.model.on_change("value", self.follow)
+        self.model.on_change("value", self.take_move)
         self._entry.on_change("value", self._on_entry)
         self._layout = pn.Column(pn.pane.Bokeh(self._entry, sizing_mode="stretch_width",
                                                margin=0), self._message, self._slider,
@@ -249,7 +249,7 @@ class ExactSlider(pn.viewable.Viewer):
         """How the box shows the value `v`."""
         return f"{v:.{self._digits}g}"
 
-    def follow(self, attr: str, old: float, new: float) -> None:
+    def take_move(self, attr: str, old: float, new: float) -> None:
         """Take a move of the slider in the browser: a change of `model.value` (Bokeh's
         public ``on_change``; the one path of a browser's move into the app).
 
