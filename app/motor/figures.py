@@ -3,23 +3,40 @@
 1. the rod to scale with the amplitudes of its standing wave magnified, the rotor resting
    on its drawn top face at x0, a readout; taps on it move the rotor;
 2. the stall thrust along the rod, its extremes marked, the regions where the contact
-   never opens shaded and labelled with why the thrust stops short of the ends;
+   never opens shaded and labelled, upright inside the shading (so that the label is
+   neither cut at the frame's edge nor over the curve), with why the thrust stops short
+   of the ends;
 3. thrust and 4. efficiency against the rotor's speed at x0, the no-load speed, the best
    efficiency and the operating point under the load marked;
 5. Archard wear rate along the rod (depth per hour of operation);
 6. the rotor's start-up from rest (speed against time).
+
+The legends of 2-5 stand above their frames (`LEGEND_PLACE`), so that they cover no
+curve.
 """
 
 from __future__ import annotations
 
+import math
+
 from bokeh.models import ColumnDataSource, DataRange1d, Label, Range1d
 
-from app.kit.figures import FRAME_LEVEL, new_figure, style_figure
+from app.kit.figures import FRAME_LEVEL, new_figure, place_legend, style_figure
 
 #: Colours (Okabe-Ito) and the shading of the never-opening region.
 THRUST_COLOR, EFFICIENCY_COLOR, ROTOR_COLOR = "#0072B2", "#009E73", "#D55E00"
 INVALID_COLOR = "#999999"
 NO_LOAD_COLOR, BEST_COLOR, OPERATING_COLOR = "#CC79A7", "#F0E442", "#000000"
+#: Where the curve plots' legends stand: in a row above the frame, out of the curves.
+LEGEND_PLACE = "above"
+
+
+def legend_above(fig) -> None:
+    """`fig`'s legend in rows of at most two entries above its frame (`LEGEND_PLACE`):
+    it covers no curve, and two entries fit a phone's width."""
+    legend = fig.legend[0]
+    place_legend(fig, legend, LEGEND_PLACE)
+    legend.ncols = min(2, len(legend.items))
 
 
 def source(name: str, *columns: str) -> ColumnDataSource:
@@ -82,13 +99,16 @@ class MotorFigures:
         self.rod_figure = fig
 
     def _thrust_figure(self) -> None:
+        # (taller: its legend's two rows above the frame)
         fig = new_figure("Stall thrust along the rod (rotor held)", "x₀ (mm)",
-                         "stall thrust (mN, + along +x)")
+                         "stall thrust (mN, + along +x)", height=380)
         fig.vstrip("left", "right", source=self.invalid, fill_color=INVALID_COLOR,
                    fill_alpha=0.3, line_color=None, legend_label="contact never opens")
+        # upright in the shading (bottom to top), which holds no curve: the strip at an
+        # end is narrower than the label's lines are long
         fig.text("x_mm", "y", text="text", source=self.ends, text_align="center",
                  text_baseline="middle", text_font_size="10pt", text_color="#333333",
-                 name="motor_ends_text")
+                 angle=math.pi / 2, name="motor_ends_text")
         fig.line("x_mm", "thrust_mN", source=self.thrust, color=THRUST_COLOR,
                  line_width=3, legend_label="stall thrust")
         fig.scatter("x_mm", "thrust_mN", source=self.optimum, marker="star", size=18,
@@ -97,8 +117,8 @@ class MotorFigures:
                   line_dash="dotted", level=FRAME_LEVEL)
         fig.scatter("x_mm", "thrust_mN", source=self.x0, size=12, color=ROTOR_COLOR,
                     line_color="black", level=FRAME_LEVEL)
-        fig.legend.location = "top_right"
         style_figure(fig)
+        legend_above(fig)
         self.thrust_figure = fig
 
     def _speed_figures(self) -> None:
@@ -116,8 +136,8 @@ class MotorFigures:
             fig.scatter("V_mm_s", column, source=self.operating, size=14, marker="square",
                         fill_color="white", line_color=OPERATING_COLOR, line_width=3,
                         legend_label="operating point under the load")
-            fig.legend.location = "top_right"
             style_figure(fig)
+            legend_above(fig)
             figs.append(fig)
         self.speed_figure, self.efficiency_figure = figs
 
@@ -133,8 +153,8 @@ class MotorFigures:
                  line_dash="dashed", legend_label="centre of the patch")
         fig.vspan("x_mm", source=self.x0, line_color=ROTOR_COLOR, line_width=2,
                   line_dash="dotted", level=FRAME_LEVEL)
-        fig.legend.location = "top_right"
         style_figure(fig)
+        legend_above(fig)
         self.wear_figure = fig
 
     def _start_figure(self) -> None:
