@@ -22,7 +22,6 @@ from functools import cache, partial
 
 import numpy as np
 import panel as pn
-import param
 from bokeh.models import (
     ColorBar,
     ColumnDataSource,
@@ -38,6 +37,7 @@ from app.bem import data
 from app.kit.batch import held
 from app.kit.figures import fit_range, new_figure, place_legend, style_figure
 from app.kit.jobs import RUNNER
+from app.kit.lazy_card import LazyCard
 from app.kit.progress import JobProgress
 from app.kit.widgets import ERROR_STYLE, text_html
 from core import Contact
@@ -98,9 +98,8 @@ class BemCard(pn.viewable.Viewer):
             "map_nu": {}, "map_sweep": {}, "map_pairs": {},
             "map_current": {"nu": [], "err": []},
         }.items()}
-        self.card = pn.Card(title=TITLE, collapsed=True, sizing_mode="stretch_width",
-                            margin=6)
-        self.card.param.watch(self._on_collapsed, "collapsed")
+        self.lazy = LazyCard(TITLE, self._build, self._on_opened)
+        self.card = self.lazy.card
 
     def __panel__(self) -> pn.Card:
         return self.card
@@ -108,14 +107,12 @@ class BemCard(pn.viewable.Viewer):
     @property
     def built(self) -> bool:
         """Whether the card's content exists (it has been opened)."""
-        return bool(self.card.objects)
+        return self.lazy.built
 
-    def _on_collapsed(self, event: param.parameterized.Event) -> None:
-        if not event.new and not self.built:
-            with held():
-                self.card.objects = self._build()
-                self._show_map_mark()
-                self._show_status()
+    def _on_opened(self, first: bool) -> None:
+        if first:
+            self._show_map_mark()
+            self._show_status()
 
     def close(self) -> None:
         """The session ended: drop the waiting run; ask for nothing more."""

@@ -29,6 +29,7 @@ from app.dem.upload import CsvUpload
 from app.kit.a11y import TabList
 from app.kit.batch import held
 from app.kit.figures import fit_range, new_figure, style_figure
+from app.kit.lazy_card import LazyCard
 from app.kit.style import TAB_ROW_CSS
 from app.kit.widgets import ERROR_STYLE, bind, shortened, text_html
 from core.dem_check import CASES, lammps
@@ -77,11 +78,10 @@ class DemCard(pn.viewable.Viewer):
                                        name="dem_lammps"),
             "upload": ColumnDataSource({"tau": [], "T": []}, name="dem_upload"),
         }
-        self.card = pn.Card(title=TITLE, collapsed=True, sizing_mode="stretch_width",
-                            margin=6)
+        self.lazy = LazyCard(TITLE, lambda: [self._build_tabs()])
+        self.card = self.lazy.card
         #: the Impacts tab, built when first opened
         self.impacts: ImpactsTab | None = None
-        self.card.param.watch(self._on_collapsed, "collapsed")
 
     def __panel__(self) -> pn.Card:
         return self.card
@@ -89,12 +89,7 @@ class DemCard(pn.viewable.Viewer):
     @property
     def built(self) -> bool:
         """Whether the card's content exists (it has been opened)."""
-        return bool(self.card.objects)
-
-    def _on_collapsed(self, event: param.parameterized.Event) -> None:
-        if not event.new and not self.built:
-            with held():
-                self.card.objects = [self._build_tabs()]
+        return self.lazy.built
 
     def close(self) -> None:
         """The session ended: stop the Impacts tab's runs."""

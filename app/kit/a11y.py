@@ -2,8 +2,8 @@
 
 `TabList`: the tabs pattern over a Panel `Tabs` (roles, `aria-selected`, arrows,
 Home/End, Enter/Space, a visible focus ring); `RadioGroup`: a choice of one among a few
-as the radio group pattern (`aria-checked`, arrows); `Disclosure` and `disclosure_card`:
-a card whose title says whether it is open (`aria-expanded`); `KeyShortcut`: a
+as the radio group pattern (`aria-checked`, arrows); `CardTitle` and `expandable_card`:
+a card whose header says whether it is open (`aria-expanded`); `KeyShortcut`: a
 documented page-level key that clicks a button; `LiveText`: a polite live region;
 `Landmark`: a layout carrying an ARIA landmark role.  Each is Panel's public
 `ReactiveHTML` (its scripts run under the page's Content-Security-Policy);
@@ -227,57 +227,58 @@ class Landmark(pn.reactive.ReactiveHTML):
         super().__init__(**params)
 
 
-#: JavaScript of `Disclosure`: the button's expanded state, chevron and title.
-_DISCLOSURE_SHOW = """
-toggle.setAttribute("aria-expanded", data.expanded ? "true" : "false");
-chevron.textContent = data.expanded ? "▾" : "▸";
+#: JavaScript of `CardTitle`: the title's text, and the expanded state of the header
+#: button of the card holding it (the button the title is drawn in, in Panel's row).
+_CARD_TITLE_SHOW = """
 label.textContent = data.title;
+const mark = (frames) => {
+  let button = view.el;  // (up through the layouts, and their shadow roots, around it)
+  for (let i = 0; i < 8 && button != null && button.tagName !== "BUTTON"; i++) {
+    button = button.parentElement ?? button.getRootNode().host ?? null;
+  }
+  if (button != null && button.tagName === "BUTTON") {
+    button.setAttribute("aria-expanded", data.expanded ? "true" : "false");
+  } else if (frames > 0) {  // (drawn before the card put it in its button)
+    requestAnimationFrame(() => mark(frames - 1));
+  }
+};
+mark(120);
 """
 
 
-class Disclosure(pn.reactive.ReactiveHTML):
-    """The title of a collapsible card as a disclosure button (WAI-ARIA Authoring
-    Practices' disclosure pattern): a `<button>` whose `aria-expanded` says whether the
-    card is open (`expanded`); a click, Enter or Space (a button's own keys) toggles it.
+class CardTitle(pn.reactive.ReactiveHTML):
+    """The title of a collapsible Panel `Card` (its `header`) that tells a screen reader
+    whether the card is open (WAI-ARIA Authoring Practices' disclosure pattern): the
+    card's header button, in which Panel draws this title, gets `aria-expanded` =
+    `expanded`, written again whenever the card draws its header anew.
 
-    Panel's `Card` draws its title as a `<button>` without `aria-expanded`, and no
-    property of Panel gives it one: `disclosure_card` makes a card whose header is
-    this button instead (Panel's own header button left out, `collapsible=False`)."""
+    Panel's `Card` draws its header as a `<button>` without `aria-expanded`, and no
+    property of Panel gives it one; the title, drawn inside that button, is the one part
+    of the card the page draws itself.  `expandable_card` keeps `expanded` equal to
+    the card's `not collapsed`."""
 
     title = param.String(default="")
     expanded = param.Boolean(default=False)
 
-    _template = (
-        '<button id="toggle" type="button" onclick="${script(\'click\')}">'
-        '<span id="chevron" aria-hidden="true"></span><span id="label"></span></button>')
-    _scripts: ClassVar[dict[str, str]] = {
-        **dict.fromkeys(("render", "expanded", "title"), _DISCLOSURE_SHOW),
-        "click": "data.expanded = !data.expanded;",
-    }
+    _template = '<span id="label"></span>'
+    _scripts: ClassVar[dict[str, str]] = dict.fromkeys(
+        ("render", "after_layout", "expanded", "title"), _CARD_TITLE_SHOW)
 
-    #: As Panel's card header: the whole width, the title at the left after a chevron.
-    CSS = """
-#toggle { font: inherit; font-size: 1.05em; color: inherit; background: transparent;
-          border: none; width: 100%; text-align: left; cursor: pointer; padding: 0.25em;
-          display: flex; gap: 0.5em; align-items: baseline; }
-#chevron { display: inline-block; width: 1em; }
-""" + f"#toggle:focus-visible {{ {FOCUS_RING} }}\n"
+    #: As Panel's card title (`.card-title`: large and bold).
+    CSS = "#label { font-size: 1.4em; font-weight: bold; }"
 
     def __init__(self, **params) -> None:
         params["stylesheets"] = [self.CSS, *params.get("stylesheets", [])]
-        params.setdefault("sizing_mode", "stretch_width")
-        params.setdefault("margin", 0)
+        params.setdefault("margin", (5, 0))
         super().__init__(**params)
 
 
-def disclosure_card(*objects, title: str, collapsed: bool = True, **params) -> pn.Card:
-    """A Panel `Card` of `objects` titled `title`, opened and closed by a `Disclosure`
-    (its header: a button with `aria-expanded`), its `collapsed` and the button's
-    `expanded` kept opposite whichever changes; `params` go to the card."""
-    header = Disclosure(title=title, expanded=not collapsed)
-    card = pn.Card(*objects, title=title, header=header, collapsible=False,
-                   collapsed=collapsed, **params)
-    header.param.watch(lambda e: setattr(card, "collapsed", not e.new), "expanded")
+def expandable_card(*objects, title: str, collapsed: bool = True, **params) -> pn.Card:
+    """A Panel `Card` of `objects` titled `title` by a `CardTitle`, so that its header
+    button says whether it is open (`aria-expanded`), followed on every change of the
+    card's `collapsed`; `params` go to the card."""
+    header = CardTitle(title=title, expanded=not collapsed)
+    card = pn.Card(*objects, title=title, header=header, collapsed=collapsed, **params)
     card.param.watch(lambda e: setattr(header, "expanded", not e.new), "collapsed")
     return card
 

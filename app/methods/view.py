@@ -23,6 +23,7 @@ import app.methods.data as data
 from app.kit.batch import held
 from app.kit.figures import CURVE_POINTS, fit_range, new_figure, style_figure
 from app.kit.jobs import RUNNER
+from app.kit.lazy_card import LazyCard
 from app.kit.progress import JobProgress
 from app.kit.widgets import LabelledCheckbox, text_html
 from app.methods.results import RESULTS, download_text, read_rows
@@ -80,7 +81,6 @@ class MethodsScene:
         self.source = ColumnDataSource({"xs": [], "ys": [], "label": [], "color": []},
                                        name="methods")
         self.exact = ColumnDataSource({"tau": [], "T": []}, name="methods_exact")
-        self._built = False
         self._closed = False
         #: how many runs were asked for: a result is shown only if it is the newest's
         self._requests = 0
@@ -89,16 +89,19 @@ class MethodsScene:
         # collapsed by default; while collapsed nothing here is built, computed or sent
         # (a hidden plot whose data changes also makes the browser lay out the page
         # again): the controls and the plot are built when the card is first opened
-        self.card = pn.Card(title="Methods: numerical schemes against the closed form",
-                            collapsed=True, sizing_mode="stretch_width", margin=6)
-        self.card.param.watch(self._on_collapsed, "collapsed")
+        self.lazy = LazyCard("Methods: numerical schemes against the closed form",
+                             self._build, self._on_opened)
+        self.card = self.lazy.card
 
-    def _build(self) -> None:
-        """The controls and the overlay plot (on the card's first opening)."""
+    def _build(self) -> list:
+        """The controls and the overlay plot (on the card's first opening): the card's
+        objects."""
         self.choice = pn.widgets.MultiChoice(
             label="Methods", options=list(self.methods),
             value=[m for m in data.DEFAULT_METHODS if m in self.methods],
-            sizing_mode="stretch_width")
+            # (the placeholder names the search box: without one, BokehJS's Choices
+            # gives it aria-label="null")
+            placeholder="Add a method", sizing_mode="stretch_width")
         self.live = LabelledCheckbox(label="Recompute live on every change", value=False)
         self.resolution = pn.widgets.Select(
             label="Resolution", options=data.RESOLUTION_FACTORS, value=1.0, width=200)
@@ -118,26 +121,21 @@ class MethodsScene:
         fig.legend.location = "bottom_left"
         style_figure(fig)
         self.figure = fig
-        self._built = True
-        self.card.objects = self._body()
+        return self._body()
 
     @property
     def shown(self) -> bool:
         """Whether the scene is expanded (the closed form and live runs follow the
         parameters only then)."""
-        return not self.card.collapsed
+        return self.lazy.shown
 
-    def _on_collapsed(self, event) -> None:
-        if event.new:
-            return
-        first = not self._built
-        if first:
-            self._build()
+    def _on_opened(self, first: bool) -> None:
+        """Catch up with the parameters; on the first opening, run the methods chosen
+        by default (drawn once)."""
         if self._contact is not None:
-            with held():
-                self.update_contact(self._contact)
+            self.update_contact(self._contact)
             if first:
-                self.run()  # the methods chosen by default, drawn once on opening
+                self.run()
 
     def close(self) -> None:
         """The session ended: drop the waiting run; ask for nothing more."""

@@ -711,3 +711,50 @@ def test_play_key_plays_and_pauses(browser, url) -> None:
     wait_until(lambda: figures(page) == {PLOT_NAMES[k]: t for k, t in expected.items()},
                what="the descriptions of the frame the pause landed on")
     page.close()
+
+
+# ------------------------------------------------------- states of toggles and cards
+
+METHODS_CARD = "Methods: numerical schemes against the closed form"
+
+
+def test_toggle_and_cards_say_their_state_and_the_methods_box_its_name(browser,
+                                                                         url) -> None:
+    """The drive's psi/theta toggle said neither which button was pressed nor that it
+    was one choice; a collapsible card's title did not say whether it was open; the
+    Methods chooser's search box was named "null".  Now the toggle is a radio group
+    (aria-checked, the arrows choose), each card's title button has aria-expanded,
+    which follows every opening and closing, and the box is named."""
+    page, console = open_explorer(browser, url)
+    group = page.get_by_role("radiogroup", name="Set the drive by")
+    psi, angle = group.get_by_role("radio", name="ψ"), group.get_by_role("radio",
+                                                                          name="angle θ")
+    assert (psi.get_attribute("aria-checked"), angle.get_attribute("aria-checked")) == (
+        "true", "false")
+    angle.click()
+    page.wait_for_function("() => location.search.includes('drive=angle')",
+                           timeout=20_000)  # (the server took it)
+    assert (psi.get_attribute("aria-checked"), angle.get_attribute("aria-checked")) == (
+        "false", "true")
+    page.keyboard.press("ArrowLeft")  # (the keyboard is on angle θ: back to ψ)
+    page.wait_for_function("() => !location.search.includes('drive=angle')",
+                           timeout=20_000)
+    assert psi.get_attribute("aria-checked") == "true"
+    assert psi.evaluate("(el) => el.getRootNode().activeElement === el")  # the keyboard on it
+
+    title = page.get_by_role("button", name=METHODS_CARD)
+    assert title.get_attribute("aria-expanded") == "false"
+    title.click()
+    box = page.get_by_role("textbox", name="Add a method")
+    box.wait_for()  # built on opening, and named
+    wait_until(lambda: title.get_attribute("aria-expanded") == "true",
+               what="the opened card's aria-expanded")
+    page.wait_for_function("() => (__col('methods', 'xs') || []).length > 0",
+                           timeout=60_000)  # (its first run drawn: the card drawn anew)
+    assert title.get_attribute("aria-expanded") == "true"
+    assert "null" not in accessible_names(page).get("textbox", [])
+    title.click()
+    wait_until(lambda: title.get_attribute("aria-expanded") == "false",
+               what="the closed card's aria-expanded")
+    assert [m for m in console if "error" in m.lower()] == []
+    page.close()
