@@ -2,13 +2,14 @@
 
 A `panel serve app/main.py` with the settings a deployment needs fixed in one place:
 
-- **Pages built off the event loop, and only for a browser.** A page's HTML holds a
-  shell; the explorer is built into it once the browser has opened the page's websocket
-  (`app.page.guard.serve_page`), on one of Bokeh's worker threads: a page build (~0.4 s
-  of CPU) shares the interpreter with the sessions already open instead of stopping
-  them, and a page fetched without its websocket builds nothing.  A thread holds the
-  interpreter for at most 0.5 ms while another waits (``SWITCH_INTERVAL_S``), so that
-  their moves are not held up by it.
+- **Pages built off the event loop, and only for a browser.** A page's HTML holds a shell;
+  the explorer is built into it once the browser has opened the page's websocket
+  (`app.page.guard.serve_page`), on one of Bokeh's worker threads: a page build (the
+  costliest work of a page load: ``python -m benchmarks.app.page_load`` times it) shares
+  the interpreter with the sessions already open instead of stopping them, and a page
+  fetched without its websocket builds nothing. A thread holds the interpreter for at
+  most 0.5 ms while another waits (``SWITCH_INTERVAL_S``), so that their moves are not
+  held up by it.
 - **Security headers on every HTML page.** A Content-Security-Policy with a fresh nonce
   per response: the page's own inline scripts carry the nonce, so a script injected into
   the page (e.g. an ``<img onerror=...>`` smuggled through a URL) does not run.  BokehJS
@@ -22,11 +23,12 @@ A `panel serve app/main.py` with the settings a deployment needs fixed in one pl
   (a link preview, a crawler) is discarded after 20 s; connections are pinged every
   10 s so that proxies keep idle classroom sessions open; one that answers no ping for
   10 s (e.g. a client stopped half-way through a frame) is closed.
-- **Page loads and builds per client address** (``--class-size N``, default 40): N
-  pages built at once, then one every 4 s (`app.page.guard.BUILDS`: past them the page
-  shows a note instead of the explorer), and 3N page loads, then one a second
-  (`app.page.gate`: past them a client is sent, before any session is made, to a short
-  429 page, ``/main/busy``, that opens its link again when it may).
+- **Page loads and builds per client** (an IPv4 address, an IPv6 /64;
+  ``--class-size N``, default 40): N pages built at once, then one every 4 s
+  (`app.page.guard.BUILDS`), 3N page loads, then one a second, and N/16 pages thrown
+  away (closed while their explorer was built or within 3 s of its being sent), then
+  one every 30 s (`app.page.gate`): past any of them a page request is answered, before
+  any session is made, with a short 429 page that opens its link again when it may.
 - **Signed session ids** (``BOKEH_SECRET_KEY``, else a key drawn at start): a websocket
   or a page request naming a session id this server did not issue is refused (a
   websocket with 403, before its handshake: `app.page.websocket`), so no client can have
@@ -220,7 +222,8 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     p.add_argument("--class-size", type=int, default=CLASS_SIZE, metavar="N",
                    help="the most visitors behind one address (a school's NAT) opening the "
                         "page at once: each address may have N pages built at once, then one "
-                        "every 4 s, and 3N page loads, then one a second (default %(default)s)")
+                        "every 4 s, 3N page loads, then one a second, and N/16 pages closed "
+                        "as soon as they came, then one every 30 s (default %(default)s)")
     p.add_argument("--admin", action="store_true",
                    help="serve Panel's /admin page (requires BASIC_AUTH or --basic-auth-file)")
     p.add_argument("--basic-auth-file", default=None, metavar="PATH",
@@ -245,13 +248,14 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
 
 
 def server_options(args: argparse.Namespace) -> dict:
-    """Keyword arguments of `panel.io.server.get_server` for `args`; the websocket
-    handler of every application set to `app.page.websocket.OnePullHandler`."""
-    from app.page import websocket
-    from app.page.gate import BUSY_PATH, BusyPage
+    """Keyword arguments of `panel.io.server.get_server` for `args`; the page and websocket
+    handlers of every application set to `app.page.gate.GatedDocHandler` and
+    `app.page.websocket.OnePullHandler`."""
+    from app.page import gate, websocket
     from app.page.limits import log_request
 
     websocket.install()
+    gate.install()
 
     opts = dict(
         port=args.port, address=args.address, num_procs=args.num_procs,
@@ -260,7 +264,6 @@ def server_options(args: argparse.Namespace) -> dict:
         use_xheaders=args.behind_proxy,
         transforms=[NoAutoload, SecurityHeaders, GZipContentEncoding],
         log_function=log_request,  # (Tornado's access log, with each line's client)
-        extra_patterns=[(BUSY_PATH, BusyPage, {"prefix": args.prefix})],
         **SESSION,
     )
     if args.basic_auth:
@@ -275,12 +278,14 @@ def server_options(args: argparse.Namespace) -> dict:
 def size_limits(class_size: int) -> None:
     """Size this process's page limits per client address for `class_size` visitors
     behind one address opening the page at once: that many page builds at once
-    (`app.page.guard.BUILDS`) and `app.page.gate.pages_burst` page loads
-    (`app.page.gate.PAGES`); their rates stay."""
+    (`app.page.guard.BUILDS`), `app.page.gate.pages_burst` page loads
+    (`app.page.gate.PAGES`) and `app.page.gate.thrown_burst` pages closed soon after
+    their build (`app.page.gate.THROWN`); their rates stay."""
     from app.page import gate, guard
 
     guard.BUILDS.burst = float(class_size)
     gate.PAGES.burst = gate.pages_burst(class_size)
+    gate.THROWN.limit.burst = gate.thrown_burst(class_size)
 
 
 def applications() -> dict:
@@ -292,11 +297,9 @@ def applications() -> dict:
     patched)."""
     import panel as pn
 
-    from app.page import gate
     from app.page.guard import serve_page
 
-    pn.extension("katex", notifications=False, lazy_resources=False,
-                 authorize_callback=gate.authorize)  # (page loads per address)
+    pn.extension("katex", notifications=False, lazy_resources=False)
     return {"main": serve_page}
 
 
@@ -333,7 +336,7 @@ def main(argv: list[str] | None = None) -> None:
     # lazy imports and caches) is done before a visitor waits for it
     app.page.explorer.Explorer().view().get_root(Document())
     log.info("closed form and a page ready in %.1f s", time.perf_counter() - started)
-    def load_methods() -> None:  # from the cache the other process fills: ~0.5 s
+    def load_methods() -> None:  # from the cache the other process fills
         methods.stdout.read()  # (EOF when it ends, in every server process)
         methods.poll()  # (reaped, where this process started it)
         try:
@@ -345,7 +348,7 @@ def main(argv: list[str] | None = None) -> None:
 
     try:  # with a warm cache they are loaded in a second or two: before the address
         methods.wait(timeout=METHODS_WAIT_S)
-        load_methods()  # (from the cache: ~0.5 s holding the GIL, before any page)
+        load_methods()  # (from the cache, holding the GIL: before any page)
     except subprocess.TimeoutExpired:
         log.info("the Methods and Motor cards' kernels compile in the background")
         threading.Thread(target=load_methods, name="warm-methods", daemon=True).start()

@@ -10,7 +10,7 @@ replicas allow the websocket origin of the balancer (127.0.0.1:PORT, localhost:P
 which is what a browser sends through it.
 
 `smoke` checks, through the balancer, speaking Bokeh's protocol as a browser does
-(benchmarks/app/client.py's Session: GET /main with its cookies, then the websocket,
+(docker/browser_client.py's Session: GET /main with its cookies, then the websocket,
 then a ψ move answered by the plots' update):
 
 1. sessions opened (at least 6) until both replicas hold some (at most 24), each moving the slider
@@ -225,13 +225,13 @@ class Stack:
 # ---------------------------------------------------------------- the smoke test
 
 
-def _load_test():
-    """The benchmarks' Bokeh-protocol client (benchmarks/app/client.py)."""
+def _client():
+    """The browser's side of Bokeh's protocol (docker/browser_client.py)."""
     if str(ROOT) not in sys.path:  # (run as `python docker/replicas.py`)
         sys.path.insert(0, str(ROOT))
-    from benchmarks.app import client
+    from docker import browser_client
 
-    return client
+    return browser_client
 
 
 def log(msg: str) -> None:
@@ -239,8 +239,8 @@ def log(msg: str) -> None:
 
 
 async def _session(url: str, http, cookie: str | None = None):
-    lt = _load_test()
-    s = lt.Session(url, http, timeout=10.0, slider=None)
+    bc = _client()
+    s = bc.Session(url, http, timeout=10.0, slider=None)
     if cookie:
         s.cookies["explorer_route"] = cookie
     await s.open()
@@ -249,8 +249,8 @@ async def _session(url: str, http, cookie: str | None = None):
 
 async def _moved(s, timeout: float = 15.0) -> float:
     """Move ψ once; seconds until the plots' update, or raise."""
-    lt = _load_test()
-    s.stats = lt.Stats()
+    bc = _client()
+    s.stats = bc.Stats()
     await s.move()
     end = time.monotonic() + timeout
     while s.pending and s.alive and time.monotonic() < end:
@@ -268,7 +268,7 @@ def _ws_status(base: str, origin: str) -> int:
     with urllib.request.urlopen(base + "/main", timeout=60) as r:
         page = r.read().decode()
         cookie = (r.headers.get("Set-Cookie") or "").split(";")[0]
-    token = _load_test().TOKEN.search(page).group(1)
+    token = _client().TOKEN.search(page).group(1)
     host, port = base.split("//")[1].split(":")
     conn = http.client.HTTPConnection(host, int(port), timeout=10)
     conn.request("GET", "/main/ws", headers={

@@ -1,8 +1,8 @@
 """One background job runner for every session of a server process, fair to each.
 
-The Methods and Motor cards compute for up to a few hundred ms (numba kernels that
-release the GIL, so the event loop serves other sessions meanwhile).  They run here, on
-one worker thread per process, so that sliders never wait for them and the work in
+The Methods and Motor cards compute for much longer than a slider's move (numba kernels
+that release the GIL, so the event loop serves other sessions meanwhile). They run here,
+on one worker thread per process, so that sliders never wait for them and the work in
 flight is bounded:
 
 - each owner (a card of one session) has at most one job waiting: a newer one replaces

@@ -1,15 +1,25 @@
-"""Page loads per client address, refused before any session is made.
+"""Page loads per client, refused before any session is made.
 
 A page load's HTML costs the server CPU (a session and its shell, and Panel's rendering
-of the page: `app.page.guard.serve_page`), most of it on the event loop that serves
-every open session.  A script fetching the page in a loop would keep the process busy
-and slow every lecture on it.  `PAGES` gives each client address a burst of page loads
-refilled at a steady rate; past it, or once the address has no page build left
-(`app.page.guard.BUILDS`: its page would only show a note), Panel's authorization hook
-(`authorize`, ``pn.config.authorize_callback``, run before the session is made)
-redirects the client to `BusyPage`, which answers 429 with a short page that opens the
-explorer at the same link again once the address may load a page.  A refusal costs a
-few ms, spread over two small requests.
+of the page: `app.page.guard.serve_page`), and once its browser opens the websocket the
+explorer is built into it (`app.page.guard.fill`), the costliest work of a page load,
+on a worker thread that shares the interpreter with every open session.  A script
+loading the page in a loop would keep the process busy and slow every lecture on it.
+
+`GatedDocHandler`, Panel's page handler in its place (`install`), answers a page request
+before Panel or Bokeh see it, with 429 and a short page, when its client
+(`app.page.bucket.client_key`) has
+
+- no page load left (`PAGES`: a burst of page loads, refilled at a steady rate),
+- no page build left (`app.page.guard.BUILDS`: its page would only show a note), or
+- thrown too many pages away (`THROWN`: closed while their explorer was built or right
+  after it was sent; a pupil keeps the page open, a script in a loop closes each page
+  as soon as it has it).
+
+The refusal (`busy_page`) says when the address may load a page again (``Retry-After``)
+and opens the explorer at the same link then (a meta refresh; no script).  It is held
+back for up to `HOLD_S` (at most `HELD` at once), so that a client asking again as soon
+as it is answered asks at most once per `HOLD_S`: a refusal is one small request.
 
 The shipped nginx limits page loads per address as well (docs/deploy.md, "Rate
 limits"), with the same burst and rate.
@@ -17,15 +27,14 @@ limits"), with the same burst and rate.
 
 from __future__ import annotations
 
+import asyncio
 import html
 import math
-from typing import Any
-from urllib.parse import urlencode, urlsplit
+from urllib.parse import urlsplit
 
-import panel as pn
-from tornado.web import RequestHandler
+from panel.io.server import DocHandler
 
-from app.page.bucket import CLASS_SIZE, AddressLimit
+from app.page.bucket import CLASS_SIZE, AddressLimit, ThrownPages, client_key
 
 #: Page loads at once per visitor of a class behind one address: opening the link, one
 #: reload, one to spare.
@@ -37,36 +46,44 @@ def pages_burst(class_size: int) -> float:
     return float(PAGES_PER_VISITOR * class_size)
 
 
-#: The page loads of this server process, per client address: 120 at once (a class of
+#: The page loads of this server process, per client: 120 at once (a class of
 #: `CLASS_SIZE`, `pages_burst`), then one a second.
 PAGES = AddressLimit(burst=pages_burst(CLASS_SIZE), rate=1.0)
 
-#: The explorer's own path, below the server's prefix (the only page `BusyPage` sends to).
+#: A page closed this soon after its explorer was sent (s), or while it was built, is a
+#: thrown page: a browser takes a second or more to show the explorer.
+THROWN_WITHIN_S = 3.0
+
+
+def thrown_burst(class_size: int) -> float:
+    """The thrown pages at once per address for a class of `class_size` behind it: one
+    pupil in sixteen reloading a page before it has shown (at least 3)."""
+    return float(max(3, class_size // 16))
+
+
+#: The pages of this server process thrown, per client: 3 at once (a class of
+#: `CLASS_SIZE`, `thrown_burst`), then one every 30 s.
+THROWN = ThrownPages(burst=thrown_burst(CLASS_SIZE), rate=1.0 / 30.0, within=THROWN_WITHIN_S)
+
+#: The explorer's own path, below the server's prefix.
 APP_PATH = "/main"
 
-#: Where a client past its page loads is sent, below the server's prefix.
-BUSY_PATH = f"{APP_PATH}/busy"
+#: The longest a refusal is held back (s), and the most refusals held back at once (past
+#: them a refusal is answered at once).
+HOLD_S, HELD = 2.0, 256
 
 
-def authorize(user: Any, path: str) -> bool | str:
-    """Panel's authorization callback: True while the client's address has page loads
-    left (`PAGES`) and a page build (`app.page.guard.BUILDS`, not taken here: the
-    page's explorer takes it), else the URL of `BusyPage` for the link it asked for,
-    to open again once both are there.  Panel runs it for each page request, with the
-    request's session context as current document, before the session is made."""
+def refusal_after(client: str) -> float:
+    """0 (and one page load taken from `PAGES`) if `client` may load a page now, else the
+    seconds until it may: it has page loads left (`PAGES`), a page build
+    (`app.page.guard.BUILDS`, not taken here: the page's explorer takes it) and thrown
+    pages (`THROWN`)."""
     from app.page import guard
 
-    request = pn.state.curdoc.session_context.request
-    client = str(request.remote_ip)
-    building = guard.BUILDS.retry_after(client)
-    if building <= 0.0 and PAGES.allow(client):
-        return True
-    path = path.rstrip("/")
-    prefix = path[: -len(APP_PATH)] if path.endswith(APP_PATH) else ""
-    after = max(building, PAGES.retry_after(client))
-    query = urlencode({"after": max(1, math.ceil(after)),
-                       "next": link(getattr(request, "uri", "") or "", prefix)})
-    return f"{prefix}{BUSY_PATH}?{query}"
+    wait = max(guard.BUILDS.retry_after(client), THROWN.retry_after(client))
+    if wait <= 0.0 and PAGES.allow(client):
+        return 0.0
+    return max(wait, PAGES.retry_after(client), 1e-3)
 
 
 def link(uri: str, prefix: str = "") -> str:
@@ -79,28 +96,54 @@ def link(uri: str, prefix: str = "") -> str:
     return f"{app}?{parts.query}" if parts.query else app
 
 
-class BusyPage(RequestHandler):
-    """429 with a short page: too many pages were opened from this address; the page
-    opens the explorer at the visitor's link again after ``after`` seconds (Retry-After
-    and a meta refresh; no script)."""
-
-    def initialize(self, prefix: str = "") -> None:
-        self.prefix = prefix
-
-    def get(self) -> None:
-        try:
-            after = min(max(int(self.get_argument("after", "1")), 1), 3600)
-        except ValueError:
-            after = 1
-        target = html.escape(link(self.get_argument("next", ""), self.prefix), quote=True)
-        self.set_status(429)
-        self.set_header("Retry-After", str(after))
-        self.set_header("Cache-Control", "no-store")
-        self.set_header("Content-Type", "text/html; charset=UTF-8")
-        self.finish(
-            "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"
+def busy_page(after: int, target: str) -> str:
+    """The refusal's HTML: too many pages were opened from this address; the page opens
+    `target` (escaped here) after `after` s."""
+    target = html.escape(target, quote=True)
+    return ("<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"
             f"<meta http-equiv='refresh' content='{after}; url={target}'>"
             "<title>Zharii contact explorer</title></head><body>"
             "<h1>Zharii contact explorer</h1><p role='alert'>Too many pages were opened "
             f"from your network just now. The explorer opens again in {after} s "
             f"(<a href='{target}'>open it</a>).</p></body></html>")
+
+
+class GatedDocHandler(DocHandler):
+    """Panel's page handler, answering 429 (`busy_page`, ``Retry-After``) before any
+    session is made to a client that may not load a page now (`refusal_after`), held
+    back for up to `HOLD_S` (see the module docstring)."""
+
+    #: The refusals being held back now (of this process).
+    held = 0
+
+    async def prepare(self) -> None:
+        after = refusal_after(client_key(str(self.request.remote_ip)))
+        if after <= 0.0:
+            await super().prepare()
+            return
+        if GatedDocHandler.held < HELD:
+            GatedDocHandler.held += 1
+            try:
+                await asyncio.sleep(min(after, HOLD_S))
+            finally:
+                GatedDocHandler.held -= 1
+            after = max(after - HOLD_S, 0.0)
+        seconds = min(max(math.ceil(after), 1), 3600)
+        self.set_status(429)
+        self.set_header("Retry-After", str(seconds))
+        self.set_header("Cache-Control", "no-store")
+        self.set_header("Content-Type", "text/html; charset=UTF-8")
+        self.finish(busy_page(seconds, link(self.request.uri or "", self.application.prefix)))
+
+
+def install() -> None:
+    """Serve every application's page with `GatedDocHandler`: it replaces Panel's page
+    handler in Bokeh's per-application URL patterns (call before the server is made;
+    calling it again changes nothing)."""
+    from bokeh.server.urls import per_app_patterns
+
+    for i, (path, handler, *rest) in enumerate(per_app_patterns):
+        if path == r"/?" and issubclass(GatedDocHandler, handler):
+            per_app_patterns[i] = (path, GatedDocHandler, *rest)
+            return
+    raise LookupError("no page route of Panel's among Bokeh's per-application patterns")

@@ -1,15 +1,15 @@
 """Every page build guarded: whatever a link holds, the visitor gets a page.
 
-A page load has two steps (`serve_page`).  The page's HTML holds a shell only (a column
-saying the explorer is loading: `serve_shell`, a few ms); the explorer is built into it
-once the browser has loaded the page and opened its websocket (`fill`), so that a page
-fetched without its websocket (a link preview, a crawler, a script in a loop) builds
-nothing.
+A page load has two steps (`serve_page`). The page's HTML holds a shell only (a column
+saying the explorer is loading: `serve_shell`); the explorer is built into it once the
+browser has loaded the page and opened its websocket (`fill`), so that a page fetched
+without its websocket (a link preview, a crawler, a script in a loop) builds nothing.
 
 `build_page` builds one session's explorer from the page's URL and, if anything raises
 while reading the URL or building a scene, builds the default explorer instead with a
 message saying why; the server logs one line (no traceback per request).  `fill`
-refuses, cheaply, a client that has had too many pages built (`BUILDS`).
+refuses, cheaply, a client that has had too many pages built (`BUILDS`), and tells
+`app.page.gate.THROWN` which session was built for which client.
 
 The URL is read through `SafeLocation`, Panel's `Location` whose query parser takes any
 text: Panel's own fails on some links that a browser sends as they are (a doubled
@@ -29,8 +29,8 @@ import panel as pn
 from panel.io.location import Location
 from panel.io.resources import get_dist_path
 
-from app.page import layout
-from app.page.bucket import CLASS_SIZE, AddressLimit
+from app.page import gate, layout
+from app.page.bucket import CLASS_SIZE, AddressLimit, client_key
 from app.page.explorer import Explorer
 from app.page.memory import SessionMemory
 from app.page.pulls import PullGuard
@@ -91,9 +91,9 @@ def build_page(query: Mapping[str, Any]) -> tuple[Explorer, pn.Column]:
 #: The page builds of this server process, per client address: a build is the costliest
 #: work of a page load, on a worker thread (`fill`), which the sessions already open share the
 #: interpreter with, so a client loading pages in a loop would slow every lecture on
-#: its process; past its bucket a client's page loads are sent to the busy page before
-#: any session is made (`app.page.gate.authorize`), and a page loaded before the bucket
-#: ran out gets `refusal_note` instead of the explorer, which costs little
+#: its process; past its bucket a client's page loads are refused before any session is
+#: made (`app.page.gate.GatedDocHandler`), and a page loaded before the bucket ran out
+#: gets `refusal_note` instead of the explorer, which costs little
 #: (``python -m benchmarks.app.page_load`` times both).
 #: `CLASS_SIZE` at once: a class behind one address (a
 #: school's NAT) opening the page; then one every 4 s: that class reloading now and then.
@@ -146,19 +146,21 @@ def serve_shell(location: SafeLocation | None) -> pn.Column:
     return shell
 
 
-def fill(shell: pn.Column, client: str, query: Mapping[str, Any]) -> None:
+def fill(shell: pn.Column, client: str, query: Mapping[str, Any], page: str = "") -> None:
     """Build the explorer for URL `query` into `shell` (`serve_shell`), guarded as
     `build_page` says; a client past its page builds (`BUILDS`) gets `refusal_note`
-    instead.  Whatever else raises gives `failure_note` and one log line.  A built
-    session's objects are kept out of the garbage collector's walks while it is open
-    (`MEMORY`)."""
+    instead; the build is told to `app.page.gate.THROWN` as session `page`'s (a page
+    closed while it is built, or soon after, counts against its client).  Whatever else raises gives
+    `failure_note` and one log line.  A built session's objects are kept out of the
+    garbage collector's walks while it is open (`MEMORY`)."""
     if not BUILDS.allow(client):
         log.debug("page refused to %s: past its page builds", client)
         shell.objects = [refusal_note(BUILDS.retry_after(client))]
         return
+    gate.THROWN.building(page, client)
     try:
-        explorer, page = build_page(query)
-        explorer.attach(shell, page)
+        explorer, view = build_page(query)
+        explorer.attach(shell, view)
     except Exception as err:  # (Panel would show the visitor the traceback)
         log.error("page could not be served to %s for %s: %s: %s (a short page instead)",
                   client, quoted(dict(query)), type(err).__name__, quoted(str(err)))
@@ -166,6 +168,7 @@ def fill(shell: pn.Column, client: str, query: Mapping[str, Any]) -> None:
         return
     pn.state.on_session_destroyed(lambda _: MEMORY.closed())
     MEMORY.built()
+    gate.THROWN.sent(page)
 
 
 def serve_page() -> None:
@@ -192,4 +195,5 @@ def serve_page() -> None:
         doc.add_root(pulls)
         pn.Column(failure_note()).servable(title=layout.TITLE)
         return
-    pn.state.onload(partial(fill, shell, str(request.remote_ip), query))
+    pn.state.onload(partial(fill, shell, client_key(str(request.remote_ip)), query,
+                            doc.session_context.id))

@@ -19,8 +19,8 @@ of the same assertion for the connection's second close (``tornado.application``
 A websocket whose token is not signed with the server's key is refused before any
 document is built, but Bokeh logs an error naming the session id and then raises
 ``ProtocolError`` from the handler's ``open``, which Tornado logs as an uncaught
-exception with its traceback: 17 lines for each attempt, ~3,300 attempts in 20 s from
-one client on loopback.
+exception with its traceback: 17 lines for each attempt, thousands of attempts a minute
+from one client in a loop.
 
 `quiet_closed_connections` puts a `Burst` filter on each of those three loggers: the
 first such record of a burst is logged as one line without its traceback, the others
@@ -145,7 +145,7 @@ class Cap(logging.Filter):
     """Passes at most `limit` records in each `window` s and drops the others; the first
     record passed after a drop says how many were dropped.  For a logger that writes a
     line per request (Tornado's access log: a client opening websockets in a loop, each
-    refused, wrote ~650 lines a second), whatever the requests are."""
+    refused, writes hundreds of lines a second), whatever the requests are."""
 
     def __init__(self, limit: int, window: float = 10.0,
                  clock: Callable[[], float] = time.monotonic) -> None:
@@ -203,9 +203,9 @@ def refused(record: logging.LogRecord) -> bool:
 
 def refusal(status: int, path: str) -> bool:
     """Whether a request of `path` answered `status` was refused: 403 (a websocket from
-    another origin, or naming a session this server did not sign), 429 (the busy page)
-    or a redirect of the explorer's page (to the busy page: `app.page.gate.authorize`;
-    or to a login)."""
+    another origin, or naming a session this server did not sign), 429 (a page load
+    refused: `app.page.gate.GatedDocHandler`) or a redirect of the explorer's page (to a
+    login)."""
     from app.page.gate import APP_PATH
 
     return status in (403, 429) or (status == 302 and path.rstrip("/").endswith(APP_PATH))

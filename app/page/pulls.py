@@ -1,11 +1,12 @@
 """Whole-document pulls, limited per session.
 
 A client's ``PULL-DOC-REQ`` message asks the server for its session's whole document:
-~240 kB serialized, ~100 ms of CPU on one of Bokeh's worker threads.  BokehJS sends one
-per connection: a connection that sends a second one is closed
-(`app.page.websocket.OnePullHandler`).  A script can still open new connections to its
-session, each pulling once.  What every pull does see is the document being serialized
-(`bokeh.document.Document.to_json`), root by root, in the order they were added.
+all its models serialized, on one of Bokeh's worker threads (the costliest reply the
+server sends). BokehJS sends one per connection: a connection that sends a second one is
+closed (`app.page.websocket.OnePullHandler`). A script can still open new connections to
+its session, each pulling once. What every pull does see is the document being
+serialized (`bokeh.document.Document.to_json`), root by root, in the order they were
+added.
 
 `PullGuard` is a root of no display (a Bokeh `DataModel`) added first to each session's
 document: it is serialized before anything else of the document, and only when the

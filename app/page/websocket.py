@@ -1,8 +1,8 @@
-"""The explorer's websocket handler: Panel's, with one whole-document pull per connection
-and session tokens checked before the handshake.
+"""The explorer's websocket handler: Panel's, with one whole-document pull per connection,
+session tokens checked before the handshake and each close told to the page gate.
 
 BokehJS sends exactly one ``PULL-DOC-REQ`` per websocket, right after the server's
-``ACK``; each asks for the session's whole document (~240 kB serialized, ~100 ms of CPU).
+``ACK``; each asks for the session's whole document, all its models serialized.
 `OnePullHandler` closes a connection that sends a second one (one log line per client
 per burst: `app.page.limits.quiet_closed_connections`), before Bokeh reads it.  Pulls
 over new connections to one session are still bounded by the session's bucket
@@ -13,11 +13,14 @@ token is not signed with the server's key (Bokeh would accept the connection, th
 an error and raise from ``open``): the refusal is one access-log line like any other
 (`app.page.limits.log_request`), counted per client.
 
+Each close names its session to `app.page.gate.THROWN`, which counts a page closed while
+its explorer was built, or right after it was sent, against its client.
+
 Public APIs only: Panel installs its handler (``panel.io.server.WSHandler``, a subclass
 of Bokeh's) as the ``/ws`` route of Bokeh's per-application URL patterns
 (``bokeh.server.urls.per_app_patterns``) when it is imported; `install` puts
-`OnePullHandler` in its place the same way.  Tornado's ``prepare`` and ``on_message``
-are overridden; each message's fragments are counted from its header (Bokeh's wire
+`OnePullHandler` in its place the same way.  Tornado's ``prepare``, ``on_message`` and
+``on_close`` are overridden; each message's fragments are counted from its header (Bokeh's wire
 format: header, metadata, content, then two fragments per buffer).
 """
 
@@ -27,9 +30,10 @@ import json
 import logging
 from typing import Any
 
-from bokeh.util.token import check_token_signature
+from bokeh.util.token import check_token_signature, get_session_id
 from panel.io.server import WSHandler
 
+from app.page import gate
 from app.page.limits import WEBSOCKET_LOGGER
 
 log = logging.getLogger(WEBSOCKET_LOGGER)
@@ -73,8 +77,8 @@ def token_of(subprotocols: str | None) -> str | None:
 
 class OnePullHandler(WSHandler):
     """Panel's websocket handler, refusing tokens not signed with the server's key before
-    the handshake and closing a connection at its second ``PULL-DOC-REQ`` (see the module
-    docstring)."""
+    the handshake, closing a connection at its second ``PULL-DOC-REQ`` and telling
+    `app.page.gate.THROWN` of each close (see the module docstring)."""
 
     #: Fragments still to come of the message being received (0: a header is next).
     pending_fragments = 0
@@ -92,6 +96,15 @@ class OnePullHandler(WSHandler):
             self.finish()
             return
         await super().prepare()
+
+    def on_close(self) -> None:
+        token = token_of(self.request.headers.get("Sec-WebSocket-Protocol"))
+        if token is not None:
+            try:
+                gate.THROWN.closed(get_session_id(token))
+            except (ValueError, KeyError, TypeError):  # (a token Bokeh refused itself)
+                pass
+        super().on_close()
 
     async def on_message(self, message: str | bytes) -> Any:
         if self.refused:

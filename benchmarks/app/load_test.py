@@ -46,13 +46,14 @@ duration, every wait has a timeout, and the target must be a loopback address.
 Abuse (``--abuse [KIND ...]``, `benchmarks.app.abuse`): one probe session moving ψ every
 ``--interval`` s; per kind a ``--window`` alone, then one beside a single abusive client
 of that kind (`ABUSE_KINDS`: a page-load loop, websockets with invented session ids,
-PULL-DOC spam, the Methods card at 16x with live recompute, NaN as ψ), interleaved in one
-run against one server (``--serve 1`` unless given).  Per kind: the probe's p50/p95 alone
-and beside, their p95 ratio against the 1.5x target, moves answered, the server's CPU and
-the lines it logged (its output goes to a file):
+PULL-DOC spam, the Methods card at 16x with live recompute, NaN as ψ), ``--rounds`` pairs
+interleaved in one run against one server (``--serve 1`` unless given).  Per kind: the
+probe's p50/p95 alone and beside (pooled over the rounds), their p95 ratio against the
+kind's target and each round's ratio, moves answered, the server's CPU and the lines it
+logged (its output goes to a file):
 
-    python -m benchmarks.app.load_test --abuse --window 30
-    python -m benchmarks.app.load_test --abuse pull-doc nan --window 20
+    python -m benchmarks.app.load_test --abuse --window 20
+    python -m benchmarks.app.load_test --abuse pull-doc page-load-loop --window 20 --rounds 4
 
 Results: a table on stdout, and ``--json FILE`` for the raw figures.
 """
@@ -74,7 +75,6 @@ from urllib.parse import urlsplit
 from tornado.httpclient import AsyncHTTPClient
 
 from benchmarks.app import abuse, load_figures
-from benchmarks.app.client import Session, Stats
 from benchmarks.app.common import (
     AUDIENCE,
     loopback_only,
@@ -84,6 +84,7 @@ from benchmarks.app.common import (
     usage,
     yardstick_us,
 )
+from docker.browser_client import Session, Stats
 
 # ---------------------------------------------------------------- a run
 
@@ -244,6 +245,8 @@ def main(argv: list[str] | None = None) -> int:
                         "abusive client of that kind (with --serve, default --serve 1)")
     p.add_argument("--window", type=float, default=20.0,
                    help="with --abuse: recorded seconds per window")
+    p.add_argument("--rounds", type=int, default=abuse.ROUNDS,
+                   help="with --abuse: pairs of windows (alone, beside) per kind")
     args = p.parse_args(argv)
     if args.abuse is not None:
         if args.replicas is not None:
@@ -292,14 +295,15 @@ def main(argv: list[str] | None = None) -> int:
         try:
             print(f"[abuse] {setup}; {os.cpu_count()} CPUs; kinds {kinds}; server log {log}",
                   file=sys.stderr)
-            rows = asyncio.run(abuse.run_abuse(url, kinds, args.window, args.warmup, args.interval,
-                                         args.timeout, pids, log))
+            rows = asyncio.run(abuse.run_abuse(url, kinds, args.window, args.warmup,
+                                               args.interval, args.timeout, pids, log,
+                                               args.rounds))
         finally:
             if started is not None:
                 stop(started)
         print(f"setup: {setup}; {os.cpu_count()} CPUs; one probe session moving ψ every "
-              f"{args.interval:g} s; per kind {args.window:g} s alone, then {args.window:g} s "
-              "beside one abusive client")
+              f"{args.interval:g} s; per kind {args.rounds} rounds of {args.window:g} s alone "
+              f"and {args.window:g} s beside one abusive client (in turn first)")
         print(abuse.abuse_table(rows))
         if args.json:
             args.json.write_text(json.dumps({"setup": setup, "cpus": os.cpu_count(),

@@ -2,7 +2,7 @@
 
 Serves the working tree (or, with ``--revs A B``, the git revisions A and B, each a
 worktree in a temporary directory) as one process each, opens one session on each
-(the load test's simulated browser tab, `benchmarks.app.client.Session`) and moves its psi slider
+(the load test's simulated browser tab, `docker.browser_client.Session`) and moves its psi slider
 ``--moves`` times, one move every ``--interval`` s (so that a page's debounced writes,
 such as a URL written 0.4 s after a burst, land between moves as they do for a
 visitor), alternating between the arms move by move: both see the same machine load.
@@ -37,8 +37,8 @@ from pathlib import Path
 
 from tornado.httpclient import AsyncHTTPClient
 
-from benchmarks.app.client import Session, Stats
 from benchmarks.app.common import cpu_s, explorer_server, server_pid, worktree, yardstick_us
+from docker.browser_client import Session, Stats
 
 
 class Arm:

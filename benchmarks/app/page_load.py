@@ -53,7 +53,6 @@ import time
 from collections import Counter
 from pathlib import Path
 
-from benchmarks.app.client import Session
 from benchmarks.app.common import (
     AUDIENCE,
     cpu_s,
@@ -65,6 +64,7 @@ from benchmarks.app.common import (
     worktree,
     yardstick_us,
 )
+from docker.browser_client import Session
 
 #: Target: median server time of a page load, in seconds.
 TARGET_S = 0.5
@@ -78,7 +78,7 @@ LINE = re.compile(r":\d+\)$")
 
 def load(url: str) -> float:
     """Seconds from sending GET `url` to having the explorer, loaded as a browser loads
-    it (`benchmarks.app.client.Session.open`: the page's HTML, its websocket, the document (the
+    it (`docker.browser_client.Session.open`: the page's HTML, its websocket, the document (the
     page's shell), ``document_ready``, and the explorer built into the page, received).
     The browser's own work (scripts, rendering) is not in it."""
     from tornado.httpclient import AsyncHTTPClient

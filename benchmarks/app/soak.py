@@ -15,7 +15,7 @@ resident memory (RSS) of that process:
     session against the target (within 0.5 MB per session of the baseline).
 (b) **one long session**: ``--changes`` ψ moves in ONE session, each sent when the
     previous one's plot update has arrived, speaking Bokeh's websocket protocol with
-    ``benchmarks.app.client.Session``.  The server's RSS
+    ``docker.browser_client.Session``.  The server's RSS
     is sampled every ``--every`` changes; a least-squares line through the samples gives
     the trend per 1000 changes with its 95 % confidence interval, over the whole run and
     over its second half (what remains once caches are warm).  The trend counts as beyond
@@ -56,7 +56,6 @@ from pathlib import Path
 from tornado.httpclient import AsyncHTTPClient
 
 from app.serve import SESSION
-from benchmarks.app.client import Session, Stats
 from benchmarks.app.common import (
     AUDIENCE,
     ROOT,
@@ -67,6 +66,7 @@ from benchmarks.app.common import (
     wait_for_http,
     yardstick_us,
 )
+from docker.browser_client import Session, Stats
 
 #: ``python -c`` program for --malloc-trim: app.serve's main, plus glibc's malloc_trim(0)
 #: every 5 s on the server's event loop (returns the allocator's free pages to the system).

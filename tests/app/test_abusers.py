@@ -17,7 +17,7 @@ import urllib.request
 import pytest
 from bokeh.util.token import generate_jwt_token, generate_session_id
 from bokeh_client import Tab
-from test_sessions import served  # noqa: F401 (the fixture)
+from test_sessions import pages_thrown_freely, served  # noqa: F401 (fixtures)
 from tornado.httpclient import AsyncHTTPClient, HTTPClientError
 from tornado.websocket import WebSocketClosedError
 
@@ -222,10 +222,11 @@ def test_websockets_with_invented_session_ids_are_one_log_line(served, log,  # n
 def test_a_page_loop_past_its_page_loads_is_a_few_log_lines(served, log,  # noqa: F811
                                                             monkeypatch) -> None:
     """A script fetching the page in a loop: its first page loads are logged as Tornado
-    logs them, each refusal past its address's page loads (302 to the busy page, then
-    429) is not: 150 loads write 3 lines."""
+    logs them, each refusal past its address's page loads (429, held back for
+    `app.page.gate.HOLD_S`: here not at all) is not: 150 loads write 3 lines."""
     url, _ = served
     monkeypatch.setattr(app.page.gate, "PAGES", AddressLimit(burst=2, rate=1e-6))
+    monkeypatch.setattr(app.page.gate, "HOLD_S", 0.0)
     codes = []
     for _ in range(150):
         try:
@@ -238,7 +239,7 @@ def test_a_page_loop_past_its_page_loads_is_a_few_log_lines(served, log,  # noqa
     written = lines(log, *LOGGERS)
     assert len(written) == 3, written
     assert all(w.startswith("200 GET /main (127.0.0.1)") for w in written[:2])
-    assert written[2].startswith("302 GET /main (127.0.0.1)") and "refused" in written[2]
+    assert written[2].startswith("429 GET /main (127.0.0.1)") and "refused" in written[2]
 
 
 def test_a_clients_lines_past_its_burst_are_counted_in_its_next_line(served, log,  # noqa: F811

@@ -12,6 +12,7 @@ from __future__ import annotations
 import logging
 import math
 import sys
+import time
 import urllib.error
 import urllib.request
 
@@ -19,7 +20,12 @@ import pytest
 from bokeh.document import Document
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from test_sessions import new_session, served, visit  # noqa: F401 (served: the fixture)
+from test_sessions import (  # noqa: F401 (served, pages_thrown_freely: fixtures)
+    new_session,
+    pages_thrown_freely,
+    served,
+    visit,
+)
 
 import app.page.guard
 from app.contact.query import parse_query
@@ -185,6 +191,91 @@ def test_the_limit_forgets_idle_clients_and_stays_bounded() -> None:
     assert len(limit._buckets) <= 10
 
 
+@pytest.mark.parametrize("address, key", [
+    ("203.0.113.7", "203.0.113.7"), ("::ffff:203.0.113.7", "203.0.113.7"),
+    ("2001:db8:1:2:aaaa::1", "2001:db8:1:2::/64"),
+    ("2001:db8:1:2:ffff:ffff:ffff:ffff", "2001:db8:1:2::/64"),
+    ("2001:db8:1:3::1", "2001:db8:1:3::/64"), ("fe80::1%eth0", "fe80::/64"),
+    ("not an address", "not an address")])
+def test_a_client_is_an_ipv4_address_or_an_ipv6_64(address: str, key: str) -> None:
+    """One machine may use any address of its IPv6 /64: the /64 is the client."""
+    from app.page.bucket import client_key
+
+    assert client_key(address) == key
+
+
+def test_pages_thrown_away_are_counted_and_kept_ones_are_not() -> None:
+    """A page closed while its explorer is built, or within `within` s of its being sent,
+    takes one from its client's bucket; a page kept longer, or never built here, none."""
+    from app.page.bucket import ThrownPages
+
+    clock = Clock()
+    thrown = ThrownPages(burst=2, rate=0.1, within=3.0, remember=60.0, clock=clock)
+    thrown.building("kept", "school")
+    thrown.sent("kept")
+    clock.now = 3.5  # (the pupil looked at it)
+    thrown.closed("kept")
+    thrown.closed("never built here")
+    assert thrown.retry_after("school") == 0.0
+    thrown.building("a", "script")
+    thrown.closed("a")  # (while built)
+    thrown.building("b", "script")
+    thrown.sent("b")
+    clock.now = 5.0
+    thrown.closed("b")  # (1.5 s after it was sent)
+    assert thrown.retry_after("school") == 0.0
+    assert thrown.retry_after("script") == pytest.approx(8.5)  # (one every 10 s, from 3.5 s)
+    clock.now = 15.0
+    assert thrown.retry_after("script") == 0.0
+    thrown.building("old", "script")
+    clock.now = 80.0  # (forgotten after `remember`, once another page is built)
+    thrown.building("new", "script")
+    thrown.closed("old")
+    assert thrown.retry_after("script") == 0.0
+
+
+def test_a_client_throwing_its_pages_away_gets_the_busy_page(served,  # noqa: F811
+                                                             monkeypatch) -> None:
+    """Pages loaded and closed as soon as they come (a script in a loop) use up the
+    client's thrown pages (`app.page.gate.THROWN`): its next page load is answered 429
+    before any session is made; pages kept open (a class) take none of them."""
+    import asyncio
+
+    from bokeh_client import Tab
+    from tornado.httpclient import AsyncHTTPClient
+
+    import app.page.gate
+    from app.page.bucket import ThrownPages
+
+    url, server = served
+    monkeypatch.setattr(app.page.gate, "THROWN", ThrownPages(burst=2, rate=1e-6, within=3.0))
+    monkeypatch.setattr(app.page.gate, "HOLD_S", 0.0)
+
+    async def kept(n: int) -> None:
+        tabs = [Tab(url, AsyncHTTPClient()) for _ in range(n)]
+        try:
+            for tab in tabs:
+                await tab.open()
+            await asyncio.sleep(3.5)  # (looked at)
+        finally:
+            for tab in tabs:
+                tab.close()
+
+    asyncio.run(kept(3))
+    assert app.page.gate.THROWN.retry_after("127.0.0.1") == 0.0
+    visit(url)
+    visit(url)  # (its two thrown pages)
+    end = time.monotonic() + 30  # (until the server has seen the websockets close)
+    while app.page.gate.THROWN.retry_after("127.0.0.1") == 0.0 and time.monotonic() < end:
+        time.sleep(0.05)
+    before = {s.id for s in server.get_sessions("/main")}
+    with pytest.raises(urllib.error.HTTPError) as refused:
+        urllib.request.urlopen(url, timeout=60)
+    assert refused.value.code == 429
+    assert 1 <= int(refused.value.headers["Retry-After"])
+    assert {s.id for s in server.get_sessions("/main")} <= before
+
+
 def test_a_page_loaded_before_its_clients_builds_ran_out_gets_the_short_page(
         served, monkeypatch) -> None:  # noqa: F811
     """A page whose HTML was served while its address had a build left, but whose
@@ -220,21 +311,24 @@ def test_a_page_loaded_before_its_clients_builds_ran_out_gets_the_short_page(
     assert "Please reload this page in" in texts
 
 
-def test_a_client_past_its_page_builds_is_sent_to_the_busy_page(served,  # noqa: F811
-                                                                monkeypatch) -> None:
-    """Past its address's page builds a page load is redirected to the busy page (429,
+def test_a_client_past_its_page_builds_gets_the_busy_page(served,  # noqa: F811
+                                                          monkeypatch) -> None:
+    """Past its address's page builds a page load is answered with the busy page (429,
     opening the visitor's link again once a build is there) before any session is made:
     its page would only show a note."""
+    import app.page.gate
+
     url, server = served
-    monkeypatch.setattr(app.page.guard, "BUILDS", AddressLimit(burst=2, rate=0.1))
+    monkeypatch.setattr(app.page.guard, "BUILDS", AddressLimit(burst=2, rate=0.02))
+    monkeypatch.setattr(app.page.gate, "HOLD_S", 0.0)
     visit(url)
     visit(url)
     before = {s.id for s in server.get_sessions("/main")}
     with pytest.raises(urllib.error.HTTPError) as refused:
         urllib.request.urlopen(url + "?psi=3", timeout=60)
     assert refused.value.code == 429
-    assert refused.value.url.split("?")[0] == url + "/busy"
-    assert 1 <= int(refused.value.headers["Retry-After"]) <= 10  # (a build every 10 s)
+    assert refused.value.url == url + "?psi=3"  # (answered there: no redirect)
+    assert 1 <= int(refused.value.headers["Retry-After"]) <= 50  # (a build every 50 s)
     assert "url=/main?psi=3'" in refused.value.read().decode()
     assert {s.id for s in server.get_sessions("/main")} <= before
 
@@ -373,23 +467,28 @@ def test_a_page_whose_shell_cannot_be_served_shows_no_traceback(served, monkeypa
 def test_past_its_page_loads_a_client_gets_the_busy_page_and_no_session(served,  # noqa: F811
                                                                           monkeypatch) -> None:
     """A script fetching the page in a loop: past its address's page loads
-    (`app.page.gate.PAGES`) the request is redirected, before any session is made, to
-    the busy page (429, Retry-After), which opens the same link again when it may."""
+    (`app.page.gate.PAGES`) the request is answered, before any session is made, with
+    the busy page (429, Retry-After), which opens the same link again when it may; the
+    answer is held back for `HOLD_S`, so that a loop asks at most once per `HOLD_S`."""
+    import time
     import urllib.error
 
     import app.page.gate
 
     url, server = served
     monkeypatch.setattr(app.page.gate, "PAGES", AddressLimit(burst=2, rate=0.01))
+    monkeypatch.setattr(app.page.gate, "HOLD_S", 0.5)
     link = url + "?psi=2&tau0=0.4"
     for _ in range(2):
         with urllib.request.urlopen(link, timeout=60) as r:
             assert r.status == 200
     before = {s.id for s in server.get_sessions("/main")}
+    asked = time.monotonic()
     with pytest.raises(urllib.error.HTTPError) as refused:
         urllib.request.urlopen(link, timeout=60)
+    assert time.monotonic() - asked >= 0.5  # (held back)
     assert refused.value.code == 429
-    assert refused.value.url.split("?")[0] == url + "/busy"
+    assert refused.value.url == link  # (answered there: no redirect)
     after = int(refused.value.headers["Retry-After"])
     assert 60 <= after <= 100  # (a load every 100 s)
     body = refused.value.read().decode()
@@ -404,10 +503,13 @@ def test_past_its_page_loads_a_client_gets_the_busy_page_and_no_session(served, 
     ("//elsewhere.example/main", "/main"), ("/admin", "/main"), ("/main/ws", "/main"),
     ("javascript:alert(1)", "/main"), ("", "/main")])
 def test_the_busy_page_sends_only_to_the_explorer(uri: str, expected: str) -> None:
-    from app.page.gate import link
+    from app.page.gate import busy_page, link
 
     assert link(uri) == expected
     assert link(uri.replace("/main", "/x/main", 1), "/x") == expected.replace("/main", "/x/main")
+    escaped = expected.replace("&", "&amp;")
+    assert (f"content='7; url={escaped}'" in busy_page(7, expected)
+            and f"href='{escaped}'" in busy_page(7, expected))
 
 
 def test_the_limits_are_sized_for_the_class_behind_one_address(monkeypatch) -> None:
@@ -415,17 +517,23 @@ def test_the_limits_are_sized_for_the_class_behind_one_address(monkeypatch) -> N
     school behind one NAT raises it, with nginx's burst); nonsense refused.  Without it
     (and under `panel serve app/main.py`) the limits are those of the default class."""
     import app.page.gate
-    from app.page.bucket import CLASS_SIZE
+    from app.page.bucket import CLASS_SIZE, ThrownPages
     from app.serve import parse_args, size_limits
 
-    assert (app.page.guard.BUILDS.burst, app.page.gate.PAGES.burst) == (40, 120)
+    assert (app.page.guard.BUILDS.burst, app.page.gate.PAGES.burst,
+            app.page.gate.thrown_burst(CLASS_SIZE)) == (40, 120, 3)
     monkeypatch.setattr(app.page.guard, "BUILDS", AddressLimit(burst=1.0, rate=0.25))
     monkeypatch.setattr(app.page.gate, "PAGES", AddressLimit(burst=1.0, rate=1.0))
+    monkeypatch.setattr(app.page.gate, "THROWN", ThrownPages(burst=1.0, rate=1.0, within=3.0))
     size_limits(parse_args(["--class-size", "200"]).class_size)
     assert app.page.guard.BUILDS.burst == 200 and app.page.gate.PAGES.burst == 600
+    assert app.page.gate.THROWN.limit.burst == 12
     assert [app.page.guard.BUILDS.allow("school") for _ in range(201)].count(True) == 200
+    size_limits(parse_args(["--class-size", "2"]).class_size)
+    assert app.page.gate.THROWN.limit.burst == 3  # (at least 3)
     size_limits(parse_args([]).class_size)
     assert app.page.guard.BUILDS.burst == CLASS_SIZE == 40 and app.page.gate.PAGES.burst == 120
+    assert app.page.gate.THROWN.limit.burst == 3
     for bad in ("0", "-3", "1000001"):
         with pytest.raises(SystemExit):
             parse_args(["--class-size", bad])

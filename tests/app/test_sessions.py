@@ -30,6 +30,18 @@ LIFETIME_MS = 1500  # unused sessions are discarded after this (app/serve.py: 20
 SECRET_KEY = b"a-test-key-of-at-least-thirty-two-characters"  # signs the session ids
 
 
+@pytest.fixture(autouse=True)
+def pages_thrown_freely(monkeypatch):
+    """The served explorer's limit of pages thrown per client (`app.page.gate.THROWN`)
+    out of the way: `visit` closes each page as soon as it has it, as a script does
+    (the tests of that limit set their own)."""
+    import app.page.gate
+    from app.page.bucket import ThrownPages
+
+    monkeypatch.setattr(app.page.gate, "THROWN", ThrownPages(
+        burst=1e6, rate=1.0, within=app.page.gate.THROWN_WITHIN_S))
+
+
 @pytest.fixture(scope="module")
 def served():
     """The explorer served by a server on a thread of this process; its URL and server."""

@@ -1,6 +1,8 @@
 """A browser's side of Bokeh's websocket protocol, as BokehJS speaks it: the client of
-the load test, the abuse mode, the CPU-per-move and memory benchmarks and the replica
-smoke check (docker/replicas.py).
+the replica smoke check (docker/replicas.py) and of the benchmarks (the load test, its
+abuse mode, the CPU-per-move, page-load and memory benchmarks), which import it from
+here (the tests have their own, tests/app/bokeh_client.py: tests and benchmarks do not
+import each other).
 
 `Session` is one browser tab: ``GET /main`` (cookies kept, so a balancer's sticky
 cookie is honoured) and the session token read from the page; the websocket ``/main/ws``
@@ -150,8 +152,12 @@ class Stats:
 class Session:
     """One simulated browser tab."""
 
-    def __init__(self, url: str, http: AsyncHTTPClient, timeout: float, slider: str | None):
+    def __init__(self, url: str, http: AsyncHTTPClient, timeout: float, slider: str | None,
+                 source: str | None = None):
         self.url, self.http, self.timeout, self.slider_name = url, http, timeout, slider
+        #: the local address its connections are made from (None: the system's choice;
+        #: on loopback any 127.x.y.z, so that a server sees another client address)
+        self.source = source
         self.cookies: dict[str, str] = {}
         self.conn = None
         self.pending: tuple[str, float] | None = None  # (msgid, sent at)
@@ -167,7 +173,7 @@ class Session:
     async def open(self, targets: bool = True) -> None:
         """Load the page as a browser does: its HTML, then `load`."""
         r = await self.http.fetch(self.url, request_timeout=60, follow_redirects=True,
-                                  raise_error=False)
+                                  raise_error=False, network_interface=self.source)
         if r.code == 429:  # (past the address's page loads: `app.page.gate`)
             raise LookupError(f"no explorer: page load refused (HTTP 429, {r.effective_url})")
         if r.code != 200:
@@ -229,7 +235,8 @@ class Session:
             headers["Cookie"] = "; ".join(f"{k}={v}" for k, v in self.cookies.items())
         ws = "wss" if parts.scheme == "https" else "ws"
         req = HTTPRequest(f"{ws}://{parts.netloc}{parts.path.rstrip('/')}/ws", headers=headers,
-                          request_timeout=60, connect_timeout=30)
+                          request_timeout=60, connect_timeout=30,
+                          network_interface=self.source)
         self.conn = await websocket_connect(req, max_message_size=64 << 20)
         header, _ = await asyncio.wait_for(self.read(), 60)
         if header.get("msgtype") != "ACK":
