@@ -71,11 +71,14 @@ def local_cluster_options(workers: int, memory_limit: str = MEMORY_LIMIT) -> dic
 #: the scheduler and the nannies ~5 % more: on a machine whose every core runs a worker
 #: that time is taken from the workers (measured with ``benchmarks.core.study``: ~0.7 %
 #: per worker and ~2 % for the rest with these settings). A cluster of its own (a
-#: scheduler's address) keeps its own settings.
+#: scheduler's address) keeps its own settings (docs/study.md lists these for it).
 LOCAL_CONFIG: dict[str, object] = {
     "distributed.admin.tick.interval": "1s",
     "distributed.admin.system-monitor.interval": "5s",
     "distributed.worker.profile.enabled": False,
+    # a worker thread holds one task, the next sent when it ends (~ms): at the end of a
+    # study no worker waits on a task queued behind another's (the default 1.1 sends 2)
+    "distributed.scheduler.worker-saturation": 1.0,
 }
 
 
