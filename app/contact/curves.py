@@ -138,9 +138,11 @@ class CurveScene(Scene):
             draw(fig, Segment, self.marker, x0="x", y0="lo", x1="x", y1="hi",
                  line_color="#666666", line_width=2, line_dash="dotted", level=DATA_LEVEL,
                  **view)
-            # psi, tau0 and tau, top left under the tau0 landmark (placed with the ranges)
+            # psi, tau0 and tau, top left under the landmarks' labels, tau1's (a line
+            # lower) included: a narrow plot's stamp reaches it (placed with the ranges)
             self._stamps.append(stamp(fig, x_units="data", y_units="data",
-                                      text_baseline="top", x_offset=4, y_offset=-22))
+                                      text_baseline="top", x_offset=4,
+                                      y_offset=-(TAU1_DY + 20)))
             style_figure(fig)
             if k:
                 fig.title.text_font_size = "13pt"

@@ -27,6 +27,9 @@ SPACING = 0.5  # between the pictograms' centres, scene units
 OUTLINE_POINTS = 49  # points of each pictogram sphere's outline
 #: the labels' top, under the lowest a lower sphere reaches (a gap of 2 H at tau0 -> pi/2)
 LABEL_Y = TOP - 4 * RADIUS - 2 * PICTOGRAM_DRIVE * RADIUS - 0.03
+#: how much lower every second label is (scene units): two rows, so that neighbours'
+#: labels never run together ("contactrelease") on a plot 240 px wide
+LABEL_STEP = 0.24
 
 _ANGLES = np.linspace(0.0, 2.0 * math.pi, OUTLINE_POINTS)
 
@@ -69,7 +72,7 @@ def pictograms(c: Contact) -> dict[str, list]:
     surfaces' separation (`separation`: > 0 a gap, < 0 an approach), the outlines
     (xs_upper, ys_upper, xs_lower, ys_lower), the label's colour and the leader line from
     the pictogram's top (x, TOP) to its time on the strip (x_strip, y_strip: filled by the
-    caller)."""
+    caller), and the label's top (label_y: every second one `LABEL_STEP` lower)."""
     marks = instants(c)
     taus = np.array([t for _, t in marks])
     gaps = separation(c, taus, PICTOGRAM_DRIVE * RADIUS)
@@ -87,4 +90,5 @@ def pictograms(c: Contact) -> dict[str, list]:
     return {"tau": list(taus), "label": [label for label, _ in marks], "x": list(xs),
             "xu": list(xs), "yu": list(yu), "xl": list(xs), "yl": list(yl),
             "r": [RADIUS] * len(marks), "separation": list(gaps),
-            "color": ["#D55E00" if k else "#333333" for k in inside], **cols}
+            "color": ["#D55E00" if k else "#333333" for k in inside],
+            "label_y": [LABEL_Y - LABEL_STEP * (k % 2) for k in range(len(marks))], **cols}

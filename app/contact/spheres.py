@@ -78,7 +78,10 @@ OUTLINE_POINTS = 97  # points of each sphere's outline
 HEAD_SIZE = 13  # arrow heads, screen pixels
 BOUND_TICK = 0.05  # half the height of the ticks at the ends of the +-mu P bound, radii
 #: What the ticked dashes about the arrows' foot are (under the drive line's note).
-BOUND_WORDS = "ticks: T's Coulomb bound ±μP (P, T to one scale)"
+BOUND_WORDS = "ticks: T's Coulomb bound ±μP\n(P, T to one scale)"
+#: The notes under the spheres: their top (scene units), type (pt) and how many lines
+#: the first of them has (the rest, the drive line and `BOUND_WORDS`).
+NOTES_TOP, NOTE_PT, NOTE_LINES = -1.2, 11, 4
 
 _ANGLES = np.linspace(0.0, 2.0 * math.pi, OUTLINE_POINTS)
 #: the unit circle's outline and the held upper sphere's (centre (0, 1)), radii
@@ -265,10 +268,11 @@ class SpheresScene(Scene):
             name="spheres_pictograms")
         # equal scales on both axes: the plot area (about 400 x 560 px) spans 3.2 x 4.5
         # (scaled down, its aspect kept, on a screen narrower than that)
-        # (and 1.65 R more below, for the period strip and the pictograms under it)
-        fig = figure(title="Two spheres in section", width=420, height=849, max_width=420,
+        # (and 2.05 R more below, for the period strip and the pictograms under it, their
+        # labels in two rows)
+        fig = figure(title="Two spheres in section", width=420, height=871, max_width=420,
                      sizing_mode="scale_width", x_range=Range1d(-1.6, 1.6),
-                     y_range=Range1d(-4.1, 2.1), tools="save", toolbar_location="above",
+                     y_range=Range1d(-4.45, 2.1), tools="save", toolbar_location="above",
                      x_axis_type=None, y_axis_type=None)  # (no axes, no grid)
         fig.select_one(SaveTool).filename = png_name(fig.title.text)
         s = self.sources
@@ -286,7 +290,7 @@ class SpheresScene(Scene):
         for side, fill in (("upper", "#d9d9d9"), ("lower", "#bfbfbf")):
             draw(fig, Patches, p, xs=f"xs_{side}", ys=f"ys_{side}", fill_color=fill,
                  line_color="black", line_width=1.5)
-        draw(fig, Text, p, x="x", y=pictograms.LABEL_Y, text="label", text_align="center",
+        draw(fig, Text, p, x="x", y="label_y", text="label", text_align="center",
              text_baseline="top", text_font_size="10pt", text_color="color")
         draw(fig, Scatter, s["spheres_period_marker"], x="x", y="y", size=11,
              color="#D55E00", line_color="black", level=FRAME_LEVEL)
@@ -318,11 +322,12 @@ class SpheresScene(Scene):
         # (over the spheres, on a white ground: the lower sphere may pass behind them)
         ground = {"background_fill_color": "white", "background_fill_alpha": 0.85,
                   "level": FRAME_LEVEL}
-        self.note = Label(x=-1.55, y=-2.42, text="", text_font_size="11pt",
+        # the scale note right under the other notes' lines, at any size of the plot
+        self.note = Label(x=-1.55, y=NOTES_TOP, text="", text_baseline="top",
                           text_color="#333333", name="spheres_note", **ground)
-        self.h_label = Label(x=-1.55, y=-1.78, text="", text_font_size="11pt",
-                             text_baseline="top", text_color="#333333",
-                             name="spheres_rest_note", **ground)
+        self.h_label = Label(x=-1.55, y=NOTES_TOP, text="", text_baseline="top",
+                             text_color="#333333", name="spheres_rest_note", **ground)
+        self.set_note_size(NOTE_PT)
         fig.add_layout(self.note)
         fig.add_layout(self.h_label)
         # every plot's stamp follows the forces' time; this one top right, beside the
@@ -332,6 +337,13 @@ class SpheresScene(Scene):
               text_align="right", text_baseline="top")
         style_figure(fig)
         self.figure = fig
+
+    def set_note_size(self, points: float) -> None:
+        """The notes under the spheres in `points` pt type, the scale note right under the
+        `NOTE_LINES` lines of the others (a line as BokehJS draws it: 1.35 times the
+        type's size in px, measured in Chromium)."""
+        self.h_label.text_font_size = self.note.text_font_size = f"{points:g}pt"
+        self.note.y_offset = -round(NOTE_LINES * points * 4 / 3 * 1.35 + 2, 1)
 
     def update_contact(self, c: Contact) -> None:
         """The drive line and the scale note (they follow theta, so psi); the lower

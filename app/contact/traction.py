@@ -34,6 +34,8 @@ from core import Contact
 #: The traction profile's columns (`TractionScene.profiles`), as the browser's player
 #: copies them frame by frame (`app/contact/player.js`).
 PROFILE_COLUMNS = ("r", "traction", "upper", "stick_hi")
+#: The caption's offset (px) under the top of the stamp's line (9 pt, line height 1.2).
+CAPTION_BELOW_STAMP = -20
 
 
 class TractionScene(Scene):
@@ -72,8 +74,9 @@ class TractionScene(Scene):
                                  background_fill_color="white", background_fill_alpha=0.8,
                                  name="traction_phase", level=FRAME_LEVEL)
         fig.add_layout(self.phase_label)
-        # psi, tau0 and tau, top left (placed with the caption)
-        self.stamp = stamp(fig, x_units="data", y_units="data", text_baseline="top")
+        # psi, tau0 and tau, top right, the caption under it (placed with the ranges)
+        self.stamp = stamp(fig, x_units="data", y_units="data", text_align="right",
+                           text_baseline="top")
         style_figure(fig)
         self.figure = fig
 
@@ -88,10 +91,12 @@ class TractionScene(Scene):
         a_max, p_max = self._a_max, self._p_max
         fig = self.figure
         put(fig.x_range, start=-1.1 * a_max, end=1.1 * a_max)
-        # room above the largest pressure for the caption's two lines, below it for the phase
-        put(fig.y_range, start=-1.6 * p_max, end=2.4 * p_max)
-        put(self.caption, x=1.08 * a_max, y=2.35 * p_max)
-        put(self.stamp, x=-1.08 * a_max, y=2.35 * p_max)
+        # room above the largest pressure for the stamp's line and the caption's two
+        # lines under it (each across the frame's width: side by side, they met on a
+        # narrow plot), below it for the phase
+        put(fig.y_range, start=-1.6 * p_max, end=2.9 * p_max)
+        put(self.stamp, x=1.08 * a_max, y=2.87 * p_max)
+        put(self.caption, x=1.08 * a_max, y=2.87 * p_max, y_offset=CAPTION_BELOW_STAMP)
         put(self.phase_label, x=0.0, y=-1.55 * p_max)  # bottom centre
 
     def profiles(self, c: Contact, taus: np.ndarray) -> dict[str, np.ndarray]:

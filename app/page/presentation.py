@@ -56,9 +56,18 @@ SPHERES_RIM = (10, 32)
 #: The disc's plot outside its frame (px): (across, down): the y axis with its label and
 #: the borders across; the title, the x axis with its label and the borders down.
 DISC_RIM = (105, 87)
-BADGE_FONT = "26pt"
-#: The widths of Play, Step and Reset (px): side by side in the short arrangement's
-#: column of controls.
+BADGE_FONT = "15pt"
+#: The spheres' and the disc's titles' type (their plots are the narrowest: 240 px on a
+#: zoomed laptop screen), and the disc's title's offset (px: over its y axis).
+NARROW_TITLE_FONT, DISC_TITLE_OFFSET = "12pt", -40
+#: How many ticks the plots' y axes ask for (fewer than BokehJS's 6: a plot 180 px high
+#: keeps its tick labels apart).
+Y_TICKS = 5
+#: The type of the notes under the spheres and of the traction profile's caption (pt):
+#: smaller than the full page's, for the plots of a zoomed laptop screen (240 px wide).
+NOTE_PT, CAPTION_FONT = 9, "11pt"
+#: The widths of Play, Step and Reset (px): side by side (Reset under them in the short
+#: arrangement's column of controls).
 BUTTONS = (96, 72, 72)
 
 #: The full page: this page's link without `view=present` (the parameters kept).
@@ -80,9 +89,13 @@ def panels(figure) -> list:
 
 
 def stretched(fig, css_class: str) -> None:
-    """`fig` sized by the page's CSS: stretched to its box, no margin, class `css_class`."""
+    """`fig` sized by the page's CSS: stretched to its box, no margin, class `css_class`;
+    its y axes with `Y_TICKS` ticks."""
     fig.sizing_mode, fig.margin = "stretch_both", 0
     fig.min_width = fig.max_width = None
+    for axis in fig.yaxis:
+        if "desired_num_ticks" in axis.ticker.properties():
+            axis.ticker.desired_num_ticks = Y_TICKS
     if css_class not in fig.css_classes:
         fig.css_classes = [*fig.css_classes, css_class]
 
@@ -145,7 +158,8 @@ def controls(contact: ContactView) -> Landmark:
         button.width = width
     box = pn.FlexBox(
         pn.Column(ui.preset_select, css_classes=["pp-preset"]),
-        pn.Row(ui.play_button, ui.step_button, ui.reset_button, css_classes=["pp-buttons"]),
+        pn.FlexBox(ui.play_button, ui.step_button, ui.reset_button, flex_wrap="wrap",
+                   css_classes=["pp-buttons"]),
         pn.Column(ui.speed_slider, css_classes=["pp-speed"]),
         pn.Column(ui.tau_slider, css_classes=["pp-tau"]),
         layout.play_key(contact),
@@ -163,6 +177,11 @@ def presentation(contact: ContactView, message: pn.viewable.Viewable,
     (out of sight: they take no room), and the same play / pause key."""
     spheres = contact.spheres.figure
     contact.spheres.badge.glyph.text_font_size = BADGE_FONT
+    contact.spheres.set_note_size(NOTE_PT)
+    contact.traction.caption.text_font_size = CAPTION_FONT
+    for fig in (contact.spheres.figure, contact.disc.figure):
+        fig.title.text_font_size = NARROW_TITLE_FONT
+    contact.disc.figure.title.offset = DISC_TITLE_OFFSET
     traction, disc = contact.traction.figure, contact.disc.figure
     for fig, name in ((spheres, "pp-spheres"), (traction, "pp-traction"), (disc, "pp-disc")):
         stretched(fig, name)

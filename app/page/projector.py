@@ -19,8 +19,15 @@ from app.kit.widgets import LabelledCheckbox
 
 #: How much larger the type is with the projector setting (12 pt tick labels: 18 pt).
 TYPE_SCALE = 1.5
+#: How much larger the titles are (less than the rest: a plot's title stays on its width).
+TITLE_SCALE = 1.2
 #: How much thicker the lines are.
 LINE_SCALE = 1.6
+#: How many ticks the y axes ask for, times (fewer: the larger tick labels stay apart).
+TICKS_SCALE = 0.4
+#: How much larger the axis labels and legends are (less than the tick labels: on a
+#: 1280 x 720 screen the plots keep a frame high enough for two tick labels).
+LABEL_SCALE = 1.2
 #: The check box's label in the header.
 LABEL = "Projector: larger type"
 #: The check box in the header's colours (white on the header's blue, 5.1:1).
@@ -38,22 +45,30 @@ def scaled_size(size: str, factor: float) -> str:
 
 def styled(fig) -> Iterator[tuple[Model, str, float]]:
     """The (model, property, factor) that the projector setting scales in `fig`: its
-    title, axes, legends and the lines of its glyphs."""
-    yield fig.title, "text_font_size", TYPE_SCALE
+    title (`TITLE_SCALE`), tick labels (`TYPE_SCALE`) and the number of the y axes'
+    ticks (`TICKS_SCALE`), axis labels and legends (`LABEL_SCALE`) and the lines of its
+    glyphs (`LINE_SCALE`)."""
+    yield fig.title, "text_font_size", TITLE_SCALE
     for axis in (*fig.xaxis, *fig.yaxis):
-        yield axis, "axis_label_text_font_size", TYPE_SCALE
+        yield axis, "axis_label_text_font_size", LABEL_SCALE
         yield axis, "major_label_text_font_size", TYPE_SCALE
+    for axis in fig.yaxis:
+        if "desired_num_ticks" in axis.ticker.properties():
+            yield axis.ticker, "desired_num_ticks", TICKS_SCALE
     for legend in fig.legend:
-        yield legend, "label_text_font_size", TYPE_SCALE
+        yield legend, "label_text_font_size", LABEL_SCALE
     for r in fig.renderers:
         if isinstance(r, GlyphRenderer) and "line_width" in r.glyph.properties():
             yield r.glyph, "line_width", LINE_SCALE
 
 
 def scaled(value, factor: float):
-    """A font size or a line width (a number; a dict {'value': ...}) times `factor`."""
+    """A font size, a line width (a number; a dict {'value': ...}) or a number of ticks
+    (an int: rounded, at least 2) times `factor`."""
     if isinstance(value, str):
         return scaled_size(value, factor)
+    if isinstance(value, int) and factor < 1:
+        return max(2, round(value * factor))
     if isinstance(value, int | float):
         return value * factor
     if isinstance(value, dict) and isinstance(value.get("value"), int | float | str):
