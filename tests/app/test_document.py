@@ -1156,7 +1156,8 @@ def test_the_view_is_chosen_by_the_url_and_kept_in_it() -> None:
     assert ex.view_name == "present" and ex.messages == [] and ex.state.psi == 3.0
     root = ex.view().get_root(Document())  # the one-screen page (sizes: browser test)
     assert root.select_one({"name": "spheres_badge"}) is not None
-    assert ex.contact.spheres.badge.glyph.text_font_size == "26pt"
+    from app.page.presentation import BADGE_FONT
+    assert ex.contact.spheres.badge.glyph.text_font_size == BADGE_FONT != "20pt"
     ex = Explorer(query={"view": "<b>x</b>"})
     assert ex.view_name == "" and ex.messages == [
         "view = '<b>x</b>' is unknown (known: present, student); the full page is shown"]
