@@ -10,11 +10,14 @@ loading the page in a loop would keep the process busy and slow every lecture on
 before Panel or Bokeh see it, with 429 and a short page, when its client
 (`app.page.bucket.client_key`) has
 
-- no page load left (`PAGES`: a burst of page loads, refilled at a steady rate),
-- no page build left (`app.page.guard.BUILDS`: its page would only show a note), or
-- thrown too many pages away (`THROWN`: closed while their explorer was built or right
-  after it was sent; a pupil keeps the page open, a script in a loop closes each page
-  as soon as it has it).
+- no page load left (`PAGES`: a burst of page loads, refilled at a steady rate), or
+- no page build left (`app.page.guard.BUILDS`: its page would only show a note);
+
+and it holds back for `HOLD_S` (then serves) the page of a client that has thrown too
+many pages away (`THROWN`: closed while their explorer was built or right after it was
+sent; a pupil keeps the page open, a script in a loop closes each page as soon as it has
+it): such a loop builds at most one explorer per `HOLD_S`, and a visitor who closes a few
+pages quickly (a teacher trying links, a test) waits a little and is never refused.
 
 The refusal (`busy_page`) says when the address may load a page again (``Retry-After``)
 and opens the explorer at the same link then (a meta refresh; no script).  It is held
@@ -62,25 +65,24 @@ def thrown_burst(class_size: int) -> float:
 
 
 #: The pages of this server process thrown, per client: 3 at once (a class of
-#: `CLASS_SIZE`, `thrown_burst`), then one every 30 s.
-THROWN = ThrownPages(burst=thrown_burst(CLASS_SIZE), rate=1.0 / 30.0, within=THROWN_WITHIN_S)
+#: `CLASS_SIZE`, `thrown_burst`), then one every 10 s; past them a page is held back.
+THROWN = ThrownPages(burst=thrown_burst(CLASS_SIZE), rate=1.0 / 10.0, within=THROWN_WITHIN_S)
 
 #: The explorer's own path, below the server's prefix.
 APP_PATH = "/main"
 
-#: The longest a refusal is held back (s), and the most refusals held back at once (past
-#: them a refusal is answered at once).
+#: The longest a refusal or a thrower's page is held back (s), and the most answers held
+#: back at once (past them a refusal is answered at once, a page served at once).
 HOLD_S, HELD = 2.0, 256
 
 
 def refusal_after(client: str) -> float:
     """0 (and one page load taken from `PAGES`) if `client` may load a page now, else the
-    seconds until it may: it has page loads left (`PAGES`), a page build
-    (`app.page.guard.BUILDS`, not taken here: the page's explorer takes it) and thrown
-    pages (`THROWN`)."""
+    seconds until it may: it has page loads left (`PAGES`) and a page build
+    (`app.page.guard.BUILDS`, not taken here: the page's explorer takes it)."""
     from app.page import guard
 
-    wait = max(guard.BUILDS.retry_after(client), THROWN.retry_after(client))
+    wait = guard.BUILDS.retry_after(client)
     if wait <= 0.0 and PAGES.allow(client):
         return 0.0
     return max(wait, PAGES.retry_after(client), 1e-3)
@@ -111,22 +113,33 @@ def busy_page(after: int, target: str) -> str:
 class GatedDocHandler(DocHandler):
     """Panel's page handler, answering 429 (`busy_page`, ``Retry-After``) before any
     session is made to a client that may not load a page now (`refusal_after`), held
-    back for up to `HOLD_S` (see the module docstring)."""
+    back for up to `HOLD_S`, and serving a client that threw its pages away (`THROWN`)
+    after `HOLD_S` (see the module docstring)."""
 
-    #: The refusals being held back now (of this process).
+    #: The answers being held back now (of this process).
     held = 0
 
+    @staticmethod
+    async def hold(seconds: float) -> bool:
+        """Wait `seconds` unless `HELD` answers are held back already; whether it waited."""
+        if GatedDocHandler.held >= HELD:
+            return False
+        GatedDocHandler.held += 1
+        try:
+            await asyncio.sleep(seconds)
+        finally:
+            GatedDocHandler.held -= 1
+        return True
+
     async def prepare(self) -> None:
-        after = refusal_after(client_key(str(self.request.remote_ip)))
+        client = client_key(str(self.request.remote_ip))
+        after = refusal_after(client)
         if after <= 0.0:
+            if THROWN.retry_after(client) > 0.0:
+                await self.hold(HOLD_S)
             await super().prepare()
             return
-        if GatedDocHandler.held < HELD:
-            GatedDocHandler.held += 1
-            try:
-                await asyncio.sleep(min(after, HOLD_S))
-            finally:
-                GatedDocHandler.held -= 1
+        if await self.hold(min(after, HOLD_S)):
             after = max(after - HOLD_S, 0.0)
         seconds = min(max(math.ceil(after), 1), 3600)
         self.set_status(429)

@@ -30,6 +30,7 @@ from pathlib import Path
 from tornado.httpclient import AsyncHTTPClient, HTTPClientError
 from tornado.websocket import WebSocketClosedError
 
+from app.page.gate import HOLD_S
 from benchmarks.app.common import pct, usage
 from docker.browser_client import REFUSED, Session, Stats, models_of, strings
 
@@ -37,7 +38,7 @@ from docker.browser_client import REFUSED, Session, Stats, models_of, strings
 #: ``page-loop`` fetches the page's HTML in a loop and never opens its websocket;
 #: ``page-load-loop`` loads the page whole, as a browser does, closes it and loads it
 #: again, and is recorded from its first load (its address's page limits are spent in
-#: the window); ``page-load-loop-steady`` from its first refused load on.
+#: the window); ``page-load-loop-steady`` from its first refused or held-back load on.
 ABUSE_KINDS = ("invented-ids", "pull-doc", "methods-16x", "nan", "page-loop",
                "page-load-loop", "page-load-loop-steady")
 
@@ -135,13 +136,15 @@ async def abuse_page_load_loop(url: str, http: AsyncHTTPClient, stop: asyncio.Ev
     """Load the page in a loop as a browser does (its HTML, its websocket, the document,
     the document-ready event, then the explorer built into it), each load as soon as
     the previous one has its explorer or its refusal, then closed; `ready` (if given) is
-    set at the first refused load (the busy page, or a page showing the refusal note),
-    and only then are loads counted."""
+    set at the first load refused (the busy page, or a page showing the refusal note) or
+    held back (built, but answered `HOLD_S` late: its client threw its pages away), and
+    only then are loads counted."""
     while not stop.is_set():
         s = Session(url, http, 5.0, None, source)
+        start = time.monotonic()
         try:
             await asyncio.wait_for(s.open(), 120)
-            key = "built"
+            key = "built, held back" if time.monotonic() - start >= HOLD_S else "built"
         except LookupError as err:
             key = ("refused" if REFUSED in str(err) else "refused (429)" if "429" in str(err)
                    else "no explorer")
@@ -150,7 +153,7 @@ async def abuse_page_load_loop(url: str, http: AsyncHTTPClient, stop: asyncio.Ev
         finally:
             s.close()
         if ready is not None and not ready.is_set():
-            if not key.startswith("refused"):  # (its note, or the busy page: 429)
+            if key == "built":  # (not its note, the busy page (429) or a held page)
                 continue
             ready.set()
         counts[key] = counts.get(key, 0) + 1
