@@ -22,14 +22,14 @@ from core import Contact
 
 RADIUS = 0.12  # a pictogram sphere's radius, in the scene's units (main sphere radii)
 PICTOGRAM_DRIVE = 0.5  # the drawn normal amplitude H, in pictogram radii
-TOP = -3.32  # the pictograms' top (the upper spheres' tops), scene units
+TOP = -3.02  # the pictograms' top (the upper spheres' tops), scene units
 SPACING = 0.5  # between the pictograms' centres, scene units
 OUTLINE_POINTS = 49  # points of each pictogram sphere's outline
 #: the labels' top, under the lowest a lower sphere reaches (a gap of 2 H at tau0 -> pi/2)
 LABEL_Y = TOP - 4 * RADIUS - 2 * PICTOGRAM_DRIVE * RADIUS - 0.03
 #: how much lower every second label is (scene units): two rows, so that neighbours'
 #: labels never run together ("contactrelease") on a plot 240 px wide
-LABEL_STEP = 0.24
+LABEL_STEP = 0.21
 
 _ANGLES = np.linspace(0.0, 2.0 * math.pi, OUTLINE_POINTS)
 

@@ -268,11 +268,11 @@ class SpheresScene(Scene):
             name="spheres_pictograms")
         # equal scales on both axes: the plot area (about 400 x 560 px) spans 3.2 x 4.5
         # (scaled down, its aspect kept, on a screen narrower than that)
-        # (and 2.05 R more below, for the period strip and the pictograms under it, their
-        # labels in two rows)
-        fig = figure(title="Two spheres in section", width=420, height=871, max_width=420,
+        # (and 1.65 R more below, for the period strip and the pictograms under it, their
+        # labels in two rows: no taller, so that at 240 px wide it fits a 480 px screen)
+        fig = figure(title="Two spheres in section", width=420, height=849, max_width=420,
                      sizing_mode="scale_width", x_range=Range1d(-1.6, 1.6),
-                     y_range=Range1d(-4.45, 2.1), tools="save", toolbar_location="above",
+                     y_range=Range1d(-4.1, 2.1), tools="save", toolbar_location="above",
                      x_axis_type=None, y_axis_type=None)  # (no axes, no grid)
         fig.select_one(SaveTool).filename = png_name(fig.title.text)
         s = self.sources

@@ -185,7 +185,7 @@ HEADER_CSS = f"""
 #: The controls: one row when wide; one column in the short arrangement (and a phone's).
 CONTROLS_CSS = f"""
 .pp-preset {{ flex: 1 1 340px; min-width: 0; }}
-.pp-buttons {{ flex: 0 0 auto; }}
+.pp-buttons {{ flex: 0 0 auto; width: auto !important; min-width: 0; }}
 .pp-speed {{ flex: 0 1 200px; min-width: 0; }}
 .pp-tau {{ flex: 2 1 320px; min-width: 0; }}
 @media {SHORT_QUERY}, {NARROW_QUERY} {{
