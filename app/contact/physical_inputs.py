@@ -33,6 +33,7 @@ import param
 
 import core
 from app.contact.state import SI_KEYS, ExplorerState, domain
+from app.kit.a11y import expandable_card
 from app.kit.widgets import ERROR_STYLE, LabelledCheckbox, show_later, text_html, typed_value
 from core import Interval
 
@@ -216,7 +217,7 @@ class PhysicalInputs(pn.viewable.Viewer):
         for f in FIELDS.values():
             self._show_note(f)
         self._show_refusal()
-        self.card = pn.Card(
+        self.card = expandable_card(
             self.physical_box, self.material_select, self.material_note,
             *(w for name in FIELDS for w in (self.boxes[name], self.notes[name])),
             self.refusal, title="Physical inputs", collapsed=not state.physical,

@@ -42,6 +42,7 @@ from app.contact.readout import Readout
 from app.contact.spheres import SpheresScene
 from app.contact.state import CONTACT_INPUTS, PRESETS, ExplorerState
 from app.contact.traction import DiscScene, TractionScene
+from app.kit.a11y import expandable_card
 from app.kit.batch import held
 from app.kit.figures import Scene
 from app.kit.style import TAB_ROW_CSS
@@ -91,9 +92,9 @@ class ContactView(param.Parameterized):
         self._stale: set[Scene] = set()
         self._show_figure(0)
         self._open_preset_tab()  # (a link to Fig. 8 shows Fig. 8)
-        self.fig6_card = pn.Card(title="Fig. 6 in full: the six traction profiles "
-                                 "(ψ = 2.414, τ₀ = π/6)", collapsed=True,
-                                 sizing_mode="stretch_width", margin=6)
+        self.fig6_card = expandable_card(
+            title="Fig. 6 in full: the six traction profiles (ψ = 2.414, τ₀ = π/6)",
+            collapsed=True, sizing_mode="stretch_width", margin=6)
         connect(self)
         self.refresh()
 

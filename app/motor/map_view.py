@@ -27,6 +27,7 @@ from bokeh.models import ColorBar, ColumnDataSource, HoverTool, LinearColorMappe
 from bokeh.palettes import Viridis256
 
 import app.motor.map_data as md
+from app.kit.a11y import expandable_card
 from app.kit.batch import held
 from app.kit.figures import fit_range, new_figure, style_figure
 from app.kit.jobs import RUNNER
@@ -332,7 +333,7 @@ class MapCard:
     def __init__(self, state: MotorState) -> None:
         self.state = state
         self.map: DesignMap | None = None
-        self.card = pn.Card(title=self.TITLE, collapsed=True, sizing_mode="stretch_width",
+        self.card = expandable_card(title=self.TITLE, collapsed=True, sizing_mode="stretch_width",
                             styles={"flex": "1 1 100%"})
         self.card.param.watch(self._on_card, "collapsed")
 

@@ -30,6 +30,7 @@ import app.motor.data as data
 import app.motor.downloads as downloads
 import app.motor.plots as plots
 from app.contact import export
+from app.kit.a11y import expandable_card
 from app.kit.batch import held
 from app.kit.figures import fit_range
 from app.kit.jobs import RUNNER
@@ -132,7 +133,8 @@ class MotorScene(pn.viewable.Viewer):
     def __panel__(self) -> pn.viewable.Viewable:
         """Controls beside the six plots."""
         def card(title: str, *objects: Any) -> pn.Card:
-            return pn.Card(*objects, title=title, collapsed=True, sizing_mode="stretch_width")
+            return expandable_card(*objects, title=title, collapsed=True,
+                                   sizing_mode="stretch_width")
 
         rod = card("Rod", self.rod_select, *(self.inputs[k] for k in ROD_FIELDS),
                    self.material_select, self.flat_box)

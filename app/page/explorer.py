@@ -23,6 +23,7 @@ from app.contact import lesson
 from app.contact.state import CONTACT_INPUTS, ExplorerState
 from app.contact.view import ContactView
 from app.dem.view import DemCard
+from app.kit.a11y import expandable_card
 from app.kit.style import MESSAGE_STYLE
 from app.kit.widgets import LabelledCheckbox, shortened
 from app.methods import MethodsScene
@@ -72,8 +73,8 @@ class Explorer(param.Parameterized):
         self.motor: MotorScene | None = None  # built when its card is first opened
         self.follow_motor = LabelledCheckbox(
             label="Show the rotor's contact (at x₀) in the plots above", value=False)
-        self.motor_card = pn.Card(title="Motor: the rod, its thrust and speed (Fig. 1)",
-                                  collapsed=True, sizing_mode="stretch_width", margin=6)
+        self.motor_card = expandable_card(title="Motor: the rod, its thrust and speed (Fig. 1)",
+                                          collapsed=True, sizing_mode="stretch_width", margin=6)
         self.message = pn.pane.HTML("", visible=False, sizing_mode="stretch_width",
                                     name="query_message", styles=MESSAGE_STYLE)
         self.show_messages(self.messages)

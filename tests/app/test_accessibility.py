@@ -756,5 +756,14 @@ def test_toggle_and_cards_say_their_state_and_the_methods_box_its_name(browser,
     title.click()
     wait_until(lambda: title.get_attribute("aria-expanded") == "false",
                what="the closed card's aria-expanded")
+    for name in ("Motor: the rod", "Fig. 6 in full", "Physical inputs"):  # (every card)
+        card = page.get_by_role("button", name=name)
+        assert card.get_attribute("aria-expanded") == "false", name
+        card.click()
+        wait_until(lambda c=card: c.get_attribute("aria-expanded") == "true",
+                   what=f"{name}'s aria-expanded when opened")
+        card.click()
+        wait_until(lambda c=card: c.get_attribute("aria-expanded") == "false",
+                   what=f"{name}'s aria-expanded when closed")
     assert [m for m in console if "error" in m.lower()] == []
     page.close()
