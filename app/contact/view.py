@@ -47,7 +47,7 @@ from app.kit.batch import held
 from app.kit.figures import Scene
 from app.kit.style import TAB_ROW_CSS
 from app.kit.texts import PaneText
-from app.kit.widgets import bind
+from app.kit.widgets import sync
 from core import Contact
 
 #: The curve tabs' titles, in the order of `ContactView.tabbed`.
@@ -296,10 +296,10 @@ def connect(view: ContactView) -> None:
     # follows from it in one batch; a value the state refuses changes nothing)
     for name, slider in ui.sliders().items():
         slider.feed(partial(s.set_input, name))
-    bind(ui.drive_select, s.param.drive)
-    bind(ui.speed_slider, s.param.speed)
-    bind(ui.log_box, s.param.log_psi)
-    bind(ui.period_box, s.param.period)
+    sync(ui.drive_select, s.param.drive)
+    sync(ui.speed_slider, s.param.speed)
+    sync(ui.log_box, s.param.log_psi)
+    sync(ui.period_box, s.param.period)
     ui.preset_select.param.watch(partial(choose_preset, s), "value")
     ui.reset_button.on_click(lambda _: (s.reset(), ui.clear_refusals()))
     ui.play_button.param.watch(lambda _: view.animation.press(ui.play_button.shown),

@@ -31,7 +31,7 @@ from app.kit.batch import held
 from app.kit.figures import fit_range, new_figure, style_figure
 from app.kit.jobs import RUNNER
 from app.kit.progress import JobProgress
-from app.kit.widgets import ERROR_STYLE, bind, follow, shortened, text_html
+from app.kit.widgets import ERROR_STYLE, follow, shortened, sync, text_html
 from core.dem_check.impact_cases import TESTS
 from core.dem_check.lammps import MODELS
 
@@ -97,14 +97,14 @@ class ImpactsTab(pn.viewable.Viewer):
         s = self.state
         self.test_select = pn.widgets.Select(label="Test", options=TEST_OPTIONS, value=s.test,
                                              width=440)
-        bind(self.test_select, s.param.test)
+        sync(self.test_select, s.param.test)
         self.material_select = pn.widgets.Select(label="Material",
                                                  options=material_options(s.test),
                                                  value=s.material, width=170)
         follow(self.material_select, s.param.material)  # (shown with its test's options)
         self.model_select = pn.widgets.Select(label="LAMMPS model", options=list(MODELS),
                                               value=s.model, width=200)
-        bind(self.model_select, s.param.model)
+        sync(self.model_select, s.param.model)
         self.note = pn.pane.Markdown("", sizing_mode="stretch_width",
                                      styles={"font-size": "0.9em"})
         self.figures = {q: self._figure(q, legend=(q == impacts.QUANTITIES[0]))

@@ -31,7 +31,7 @@ from app.kit.batch import held
 from app.kit.figures import fit_range, new_figure, style_figure
 from app.kit.lazy_card import LazyCard
 from app.kit.style import TAB_ROW_CSS
-from app.kit.widgets import ERROR_STYLE, bind, shortened, text_html
+from app.kit.widgets import ERROR_STYLE, shortened, sync, text_html
 from core.dem_check import CASES, lammps
 
 #: The card's tabs.
@@ -121,12 +121,12 @@ class DemCard(pn.viewable.Viewer):
         s = self.state
         self.case_select = pn.widgets.Select(label="Case", options=list(CASES), value=s.case,
                                              width=260)
-        bind(self.case_select, s.param.case)
+        sync(self.case_select, s.param.case)
         self.case_note = pn.pane.Markdown("", sizing_mode="stretch_width")
         self.model_boxes = pn.widgets.CheckBoxGroup(label="LAMMPS models",
                                                     options=list(lammps.MODELS),
                                                     value=list(s.models), inline=True)
-        bind(self.model_boxes, s.param.models)
+        sync(self.model_boxes, s.param.models)
         self.overlay_note = pn.pane.Markdown("", sizing_mode="stretch_width",
                                              styles={"font-size": "0.9em"})
         self.figure = self._figure()

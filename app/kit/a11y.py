@@ -337,7 +337,7 @@ class RadioGroup(pn.reactive.ReactiveHTML):
     Panel's `RadioButtonGroup` (BokehJS's) draws plain buttons, the chosen one only
     coloured: a screen reader hears neither the group nor which button is pressed.
     A value the browser sends is a string; the state it is bound to checks it
-    (`app.kit.widgets.bind`)."""
+    (`app.kit.widgets.sync`)."""
 
     value = param.String(default="")
     options = param.Dict(default={})

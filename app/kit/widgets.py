@@ -1,6 +1,6 @@
 """The way a widget's value reaches a state, and the texts beside widgets.
 
-`follow` and `bind` carry a widget's value into a parameter of a state (and back), a
+`follow` and `sync` carry a widget's value into a parameter of a state (and back), a
 value the parameter refuses changing nothing; `show_later` puts a widget back once the
 browser's change of it has been handled.  `typed_value` reads a typed text, `shortened`
 and `text_html` make a message safe to show; `LabelledCheckbox` is a check box named by
@@ -53,7 +53,7 @@ def follow(widget: param.Parameterized, parameter: param.Parameter,
     widget.param.watch(to_owner, "value")
 
 
-def bind(widget: param.Parameterized, parameter: param.Parameter,
+def sync(widget: param.Parameterized, parameter: param.Parameter,
          setter: Callable[[str, object], None] | None = None) -> None:
     """Keep `widget.value` and `parameter` equal, whichever of the two changes (the
     widget's values as `follow` takes them, with `setter` if given)."""
@@ -137,7 +137,7 @@ class LabelledCheckbox(pn.viewable.Viewer):
         """A check box kept equal to the boolean `parameter` of a Parameterized instance
         (e.g. `state.param.log_psi`), whichever of the two changes."""
         box = cls(label=label, value=getattr(parameter.owner, parameter.name), **params)
-        bind(box, parameter)
+        sync(box, parameter)
         return box
 
     def __panel__(self) -> pn.widgets.CheckBoxGroup:
