@@ -330,7 +330,7 @@ class RadiiScene(CurveScene):
         """The curves, and Fig. 4a with the Fig. 6 disks (tau0 alone: drawn again only
         when tau0 changes)."""
         super().update_contact(c)
-        if not self.new_tau0(c):
+        if not self.note_tau0(c):
             return
         tau = np.unique(np.concatenate([np.linspace(0.0, math.pi, 241), [c.tau0, c.tau_end]]))
         uz = c.drive_displacement(tau)  # u_z0 / H = u_x0 / u0 = sin tau (eq 3)

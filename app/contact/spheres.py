@@ -359,7 +359,7 @@ class SpheresScene(Scene):
         put(self.h_label, text=f"{gap}\ndrive line at θ = {math.degrees(c.theta):.1f}°"
                                 f"\n{BOUND_WORDS}")
         put(self.note, text=scale_note(c))
-        if self.new_tau0(c):
+        if self.note_tau0(c):
             self._show_period(c, cy)
 
     def _show_period(self, c: Contact, cy: float) -> None:

@@ -83,7 +83,7 @@ class TractionScene(Scene):
     def update_contact(self, c: Contact) -> None:
         """The r grid and the plot's ranges and labels, after the largest contact radius
         a/a* and pressure p/p* (at pi/2: eqs 6, 7, which depend on tau0 alone)."""
-        if self.new_tau0(c):
+        if self.note_tau0(c):
             self._a_max = float(c.contact_radius(math.pi / 2))
             self._p_max = float(c.pressure(0.0, math.pi / 2))
             self.r_grid = np.linspace(-1.05 * self._a_max, 1.05 * self._a_max,

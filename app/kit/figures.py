@@ -349,10 +349,10 @@ class Scene:
     def __init__(self, data: dict) -> None:
         self.source = ColumnDataSource(data=data, name=self.name)
 
-    def new_tau0(self, c: Contact) -> bool:
-        """Whether `c`'s tau0 differs from that of the last call, bit for bit (-0.0 is not
-        0.0; True on the first call): what depends on tau0 alone is drawn again only
-        then."""
+    def note_tau0(self, c: Contact) -> bool:
+        """Note `c`'s tau0 as the one drawn, and say whether it differs from the one noted
+        before, bit for bit (-0.0 is not 0.0; True on the first call): what depends on
+        tau0 alone is drawn again only then."""
         key = c.tau0.hex()
         if key == self._drawn_tau0:
             return False
