@@ -179,8 +179,8 @@ def presentation(contact: ContactView, message: pn.viewable.Viewable,
     contact.spheres.badge.glyph.text_font_size = BADGE_FONT
     contact.spheres.set_note_size(NOTE_PT)
     contact.traction.caption.text_font_size = CAPTION_FONT
-    for fig in (contact.spheres.figure, contact.disc.figure):
-        fig.title.text_font_size = NARROW_TITLE_FONT
+    # (the disc's title keeps its type: its frame's aspect follows from `DISC_RIM`)
+    contact.spheres.figure.title.text_font_size = NARROW_TITLE_FONT
     contact.disc.figure.title.offset = DISC_TITLE_OFFSET
     traction, disc = contact.traction.figure, contact.disc.figure
     for fig, name in ((spheres, "pp-spheres"), (traction, "pp-traction"), (disc, "pp-disc")):
