@@ -124,9 +124,14 @@ class LabelledCheckbox(pn.viewable.Viewer):
     value = param.Boolean(default=False)
     disabled = param.Boolean(default=False)
 
+    #: The label wraps (BokehJS keeps an option's label on one line): a long one stays
+    #: inside a narrow column.
+    CSS = "label { white-space: normal; }"
+
     def __init__(self, *, label: str, value: bool = False, **params) -> None:
         super().__init__(value=value)
         self.label = label
+        params["stylesheets"] = [self.CSS, *params.get("stylesheets", [])]
         self._group = pn.widgets.CheckBoxGroup(options=[label], value=self._ticks(value),
                                                **params)
         self._group.param.watch(self._on_group, "value")
