@@ -45,11 +45,26 @@ from core import Contact
 LANDMARK_DY, TAU1_DY = 2, 18
 
 
-def place_stamp(label: Label, fig) -> None:
-    """Put `label` at the top left corner of `fig`'s ranges (unless it is there)."""
-    corner = (fig.x_range.start, fig.y_range.end)
-    if (label.x, label.y) != corner:
-        label.x, label.y = corner
+#: Where a curve plot's stamp stands: the corner of its ranges (x, y), and the stamp's
+#: separator (a newline stacks its three values), alignment and offsets (px).
+STAMP_CORNERS = {
+    # under the landmarks' labels, tau1's (a line lower) included
+    "top_left": ("start", "end", {"sep": "   ", "text_align": "left", "text_baseline": "top",
+                                  "x_offset": 4, "y_offset": -(TAU1_DY + 20)}),
+    # where the Coulomb bound +-mu P closes towards pi - tau0: T, within it, is small
+    "bottom_right": ("end", "start", {"sep": "\n", "text_align": "right",
+                                      "text_baseline": "bottom",
+                                      "x_offset": -4, "y_offset": 4}),
+}
+
+
+def place_stamp(label: Label, fig, corner: str = "top_left") -> None:
+    """Put `label` at the `corner` (`STAMP_CORNERS`) of `fig`'s ranges (unless it is
+    there)."""
+    x, y, _ = STAMP_CORNERS[corner]
+    at = (getattr(fig.x_range, x), getattr(fig.y_range, y))
+    if (label.x, label.y) != at:
+        label.x, label.y = at
 
 
 class CurveScene(Scene):
@@ -62,6 +77,8 @@ class CurveScene(Scene):
     """
 
     curves: tuple[tuple[str, str, str, str], ...] = ()
+    #: the corner of the stamp (`STAMP_CORNERS`): one the curves leave empty
+    stamp_corner = "top_left"
     #: the curves drawn as the negative of another column: {curve: column}
     mirrors: ClassVar[dict[str, str]] = {}
     title = ""
@@ -138,11 +155,9 @@ class CurveScene(Scene):
             draw(fig, Segment, self.marker, x0="x", y0="lo", x1="x", y1="hi",
                  line_color="#666666", line_width=2, line_dash="dotted", level=DATA_LEVEL,
                  **view)
-            # psi, tau0 and tau, top left under the landmarks' labels, tau1's (a line
-            # lower) included: a narrow plot's stamp reaches it (placed with the ranges)
+            # psi, tau0 and tau in the plot's empty corner (placed with the ranges)
             self._stamps.append(stamp(fig, x_units="data", y_units="data",
-                                      text_baseline="top", x_offset=4,
-                                      y_offset=-(TAU1_DY + 20)))
+                                      **STAMP_CORNERS[self.stamp_corner][2]))
             style_figure(fig)
             if k:
                 fig.title.text_font_size = "13pt"
@@ -182,7 +197,7 @@ class CurveScene(Scene):
                                                 self._landmarks, strict=True):
             y = fig.y_range
             fit_range(y, *(columns[col] for col in cols), pad=0.03, snap=True)
-            place_stamp(self._stamps[self.figures.index(fig)], fig)
+            place_stamp(self._stamps[self.figures.index(fig)], fig, self.stamp_corner)
             # the first and last labels inside the frame (at its edges, centred, they
             # would be cut)
             align = ["left", *["center"] * (len(marks) - 2), "right"]
@@ -209,6 +224,7 @@ class ForceScene(CurveScene):
     name = "force"
     title = "Tangential force T / T₀"
     y_label = "T / T₀"
+    stamp_corner = "bottom_right"
     curves = (
         ("T", "T / T₀", "#000000", "solid"),
         ("muP", "±μP / T₀", "#999999", "dashed"),

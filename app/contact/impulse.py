@@ -8,6 +8,7 @@ from functools import cached_property
 import numpy as np
 from bokeh.models import (
     ColumnDataSource,
+    Label,
     Range1d,
 )
 
@@ -15,6 +16,7 @@ from app.kit.changes import show
 from app.kit.figures import (
     CURVE_POINTS,
     DATA_LEVEL,
+    STAMP_TAG,
     Scene,
     new_figure,
     stamp,
@@ -75,7 +77,10 @@ class ImpulseScene(Scene):
                  text_font_style="bold", x_offset=6, y_offset=-6)
         fig.scatter("psi", "ratio", source=self.marker, size=14, color="#D55E00",
                     line_color="black", level=DATA_LEVEL)
-        stamp(fig)
+        # top right, where the ratio has fallen from its peak at psi = 1 (placed with the
+        # ranges)
+        stamp(fig, sep="\n", x_units="data", y_units="data", text_align="right",
+              text_baseline="top", x_offset=-4, y_offset=-4)
         style_figure(fig)
         return fig
 
@@ -113,6 +118,10 @@ class ImpulseScene(Scene):
         else:
             fig.x_range.start, fig.x_range.end = 0.0, psi[-1]
         fig.y_range.start, fig.y_range.end = 0.0, 1.05 * max(float(ratio.max()), 1e-9)
+        corner = (fig.x_range.end, fig.y_range.end)
+        for label in fig.select(type=Label):
+            if STAMP_TAG in label.tags and (label.x, label.y) != corner:
+                label.x, label.y = corner
 
     def table(self) -> dict[str, np.ndarray]:
         """The plotted curve for the CSV download: psi and the impulse ratio
