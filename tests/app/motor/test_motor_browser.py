@@ -103,7 +103,7 @@ def test_a_motor_slider_follows_a_whole_drag_of_the_real_mouse(browser, url,
     the slider lost the pointer; x0's range was also rewritten (+-19.98 -> +-20)."""
     page, console, _ = opened(browser, url)
     if DRAGGED[name]:
-        page.locator(".card-title", has_text=DRAGGED[name]).first.click()
+        page.get_by_role("button", name=DRAGGED[name], exact=True).click()  # (its title)
     track = page.locator(f".slider-motor_{name} input[type=range]")
     track.scroll_into_view_if_needed()
     page.wait_for_function("(n) => __slider(n) != null", arg=f"motor_{name}")

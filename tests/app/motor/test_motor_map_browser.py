@@ -12,6 +12,7 @@ from test_browser import errors
 from test_motor_browser import opened
 
 import app.motor.map_data as md
+from app.motor.map_view import MapCard
 from app.motor.state import MotorState
 
 pytestmark = pytest.mark.browser
@@ -38,7 +39,7 @@ WHERE = """([x, y]) => {
 def test_the_design_map_computes_shows_every_merit_and_a_click_loads_a_design(
         browser, url) -> None:
     page, console, _ = opened(browser, url)
-    page.locator(".card-title", has_text="Design map").first.click()
+    page.get_by_role("button", name=MapCard.TITLE, exact=True).click()  # (its title)
     box = page.locator(".motor-map-size input")
     box.wait_for(timeout=30_000)
     box.fill(str(SIZE))
