@@ -38,6 +38,7 @@ from urllib.parse import urlsplit
 from panel.io.server import DocHandler
 
 from app.page.bucket import CLASS_SIZE, AddressLimit, ThrownPages, client_key
+from app.page.routes import replace_route
 
 #: Page loads at once per visitor of a class behind one address: opening the link, one
 #: reload, one to spare.
@@ -153,10 +154,4 @@ def install() -> None:
     """Serve every application's page with `GatedDocHandler`: it replaces Panel's page
     handler in Bokeh's per-application URL patterns (call before the server is made;
     calling it again changes nothing)."""
-    from bokeh.server.urls import per_app_patterns
-
-    for i, (path, handler, *rest) in enumerate(per_app_patterns):
-        if path == r"/?" and issubclass(GatedDocHandler, handler):
-            per_app_patterns[i] = (path, GatedDocHandler, *rest)
-            return
-    raise LookupError("no page route of Panel's among Bokeh's per-application patterns")
+    replace_route(r"/?", GatedDocHandler)

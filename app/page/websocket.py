@@ -35,6 +35,7 @@ from panel.io.server import WSHandler
 
 from app.page import gate
 from app.page.limits import WEBSOCKET_LOGGER
+from app.page.routes import replace_route
 
 log = logging.getLogger(WEBSOCKET_LOGGER)
 
@@ -130,10 +131,4 @@ def install() -> None:
     """Serve every application's websocket with `OnePullHandler`: it replaces Panel's
     handler in Bokeh's per-application URL patterns (call before the server is made;
     calling it again changes nothing)."""
-    from bokeh.server.urls import per_app_patterns
-
-    for i, (path, handler, *rest) in enumerate(per_app_patterns):
-        if path == r"/ws" and issubclass(OnePullHandler, handler):
-            per_app_patterns[i] = (path, OnePullHandler, *rest)
-            return
-    raise LookupError("no websocket route of Panel's among Bokeh's per-application patterns")
+    replace_route(r"/ws", OnePullHandler)
