@@ -227,10 +227,9 @@ class Landmark(pn.reactive.ReactiveHTML):
         super().__init__(**params)
 
 
-#: JavaScript of `CardTitle`: the title's text, and the expanded state of the header
+#: JavaScript of `CardTitle`: the expanded state of the header
 #: button of the card holding it (the button the title is drawn in, in Panel's row).
 _CARD_TITLE_SHOW = """
-label.textContent = data.title;
 const mark = (frames) => {
   let button = view.el;  // (up through the layouts, and their shadow roots, around it)
   for (let i = 0; i < 8 && button != null && button.tagName !== "BUTTON"; i++) {
@@ -260,9 +259,12 @@ class CardTitle(pn.reactive.ReactiveHTML):
     title = param.String(default="")
     expanded = param.Boolean(default=False)
 
-    _template = '<span id="label"></span>'
+    #: (the title as the template's text, not written by the script: a script naming
+    #: the span would run, and warn, before the span is drawn)
+    _template = '<span id="label">${title}</span>'
+    _child_config: ClassVar[dict[str, str]] = {"title": "literal"}  # (the page's own text)
     _scripts: ClassVar[dict[str, str]] = dict.fromkeys(
-        ("render", "after_layout", "expanded", "title"), _CARD_TITLE_SHOW)
+        ("render", "after_layout", "expanded"), _CARD_TITLE_SHOW)
 
     #: As Panel's card title (`.card-title`: large and bold).
     CSS = "#label { font-size: 1.4em; font-weight: bold; }"

@@ -766,4 +766,5 @@ def test_toggle_and_cards_say_their_state_and_the_methods_box_its_name(browser,
         wait_until(lambda c=card: c.get_attribute("aria-expanded") == "false",
                    what=f"{name}'s aria-expanded when closed")
     assert [m for m in console if "error" in m.lower()] == []
+    assert [m for m in console if "could not be found" in m] == []  # (titles drawn first)
     page.close()
