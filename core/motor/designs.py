@@ -24,7 +24,7 @@ same libm and OpenBLAS here; ``tests/core/test_motor_batch.py`` compares the two
 over random designs of ``core.MOTOR_DOMAIN``).
 
 It is cheaper per design than a loop over the scalar API because (a) a design's
-evaluations r(v), p_in(v), p_loss(v) are made once and shared by its merits (the scalar
+evaluations r(v), p_loss(v) are made once and shared by its merits (the scalar
 API makes the no-load solve twice, the stall thrust r(0) three times and the full-slip
 end twice, and evaluates the operating speed and the best point again), and (b) each
 evaluation runs compiled from end to end (``nogil``): the drive grid, the march and the
@@ -274,53 +274,45 @@ def _drive_grid(psi, tau0, v, n):
 
 @njit(cache=True, nogil=True)
 def _evaluate(psi, tau0, v, xx, springs, steps):
-    """(r, p_in, p_loss) of one contact at speed v: ``core.motor.moving_rotor._one``
+    """(r, p_loss) of one contact at speed v: ``core.motor.moving_rotor._one``
     (``core.numerics.mdr.moving`` and its integrals), the same operations in the same
-    order, compiled."""
+    order, compiled; the input power p_in, which no merit reads, is not formed."""
     tau = _drive_grid(psi, tau0, v, steps)
     nt = tau.size
     c0 = 2.0 * math.sin(0.5 * (math.pi / 2 - tau0)) ** 2  # loading.one_minus_s0
     to_u = psi / c0
     d = np.empty(nt)
     drive = np.empty(nt)
-    sin_tau = np.empty(nt)
     for k in range(nt):
         t = tau[k]
         rise = 2.0 * math.cos(0.5 * (t + tau0)) * math.sin(0.5 * (t - tau0))
         d[k] = (rise if rise >= 0.0 else 0.0) / c0  # np.maximum(rise, 0.0)
         drive[k] = to_u * (rise - v * (t - tau0))
-        sin_tau[k] = math.sin(t)
     d[0] = 0.0
     d[nt - 1] = 0.0
     scale = 0.75 * c0 ** 1.5 * 2.0 / springs
     T, P, S = np.empty(nt), np.empty(nt), np.empty(nt)
-    # no stick radius (an empty b): the positions x are not read, their squares xx are
-    march_into(xx, xx, d, drive, scale, np.zeros(springs), T, P, S, np.empty(0))
+    # no stick radius (b None): the positions x are not read, their squares xx are
+    march_into(xx, xx, d, drive, scale, np.zeros(springs), T, P, S, None)
     impulse = trapezoid(P, tau)
-    mean_T = np.empty(nt - 1)
-    d_sin = np.empty(nt - 1)
-    for k in range(nt - 1):
-        mean_T[k] = 0.5 * (T[k + 1] + T[k])
-        d_sin[k] = sin_tau[k + 1] - sin_tau[k]
-    work_in = np.dot(mean_T, d_sin)
     for k in range(nt):
         S[k] = S[k] / to_u
-    return trapezoid(T, tau) / impulse, work_in / impulse, _sum(S) / impulse
+    return trapezoid(T, tau) / impulse, _sum(S) / impulse
 
 
 # ---- the scalar API's solvers, on cached evaluations --------------------------------
 @njit(cache=True, nogil=True)
 def _cached(psi, tau0, v, xx, springs, steps, cache, count):
     """Row of the cache holding the evaluation at v (computed if new): cache[j] =
-    (v, r, p_in, p_loss), count[0] rows used. -1 if the cache is full."""
+    (v, r, p_loss), count[0] rows used. -1 if the cache is full."""
     for j in range(count[0]):
         if cache[j, 0] == v:
             return j
     j = count[0]
     if j >= cache.shape[0]:
         return -1
-    r, p_in, loss = _evaluate(psi, tau0, v, xx, springs, steps)
-    cache[j, 0], cache[j, 1], cache[j, 2], cache[j, 3] = v, r, p_in, loss
+    r, loss = _evaluate(psi, tau0, v, xx, springs, steps)
+    cache[j, 0], cache[j, 1], cache[j, 2] = v, r, loss
     count[0] = j + 1
     return j
 
@@ -410,7 +402,7 @@ def _minus_eta(psi, tau0, s, xx, springs, steps, cache, count):
     j = _cached(psi, tau0, s, xx, springs, steps, cache, count)
     if j < 0:
         return math.nan
-    return -_efficiency(psi, s, s * cache[j, 1], cache[j, 3])
+    return -_efficiency(psi, s, s * cache[j, 1], cache[j, 2])
 
 
 @njit(cache=True, nogil=True)
@@ -538,9 +530,9 @@ def _contact(psi, tau0, load, springs, steps, xtol, xatol, xx, cache, count, out
         if k >= 0:
             p_out = load * v  # F_L V (load.operating_efficiency): 0 at zero load
             out[_VL] = v
-            out[_EL] = _efficiency(psi, v, p_out, cache[k, 3])
+            out[_EL] = _efficiency(psi, v, p_out, cache[k, 2])
             out[_PL] = p_out
-            out[_LL] = cache[k, 3]
+            out[_LL] = cache[k, 2]
             status |= _LOAD_OK
     out[_NE] = count[0]
     out[_OK] = status
@@ -553,7 +545,7 @@ def _contacts(psi, tau0, load, springs, steps, xtol, xatol):
     out = np.empty((n, _COLUMNS))
     xx = (np.arange(springs) + 0.5) / springs  # mdr.spring_positions, squared
     xx *= xx
-    cache = np.empty((_CACHE, 4))
+    cache = np.empty((_CACHE, 3))
     count = np.zeros(1, dtype=np.int64)
     for i in range(n):
         _contact(psi[i], tau0[i], load[i], springs, steps, xtol, xatol, xx, cache, count,

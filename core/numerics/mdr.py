@@ -103,6 +103,40 @@ def _stick_radius(x, margin, m, d):
     return min(x0 + (x1 - x0) * m0 / (m0 - m1), a)
 
 
+@njit(cache=True, nogil=True, fastmath={"reassoc"})
+def _held(xx, u, held, dk, d_prev, du, margin):
+    """One step of the springs 0 .. held - 1, in contact at the previous step (approach
+    d_prev) and at this one (dk): each follows the drive increment du (stick) and is
+    capped at its Coulomb bound w = dk - x^2 (slide). u is updated in place, margin gets
+    the stick margins w - |trial|. Returns the sums over these springs of u, of w and of
+    the slip work (``march_into``).
+
+    The springs are independent, so the loop runs in the CPU's vector lanes: each
+    spring's value is computed as written (its u bit for bit), only the three sums are
+    reassociated (``fastmath={"reassoc"}``: partial sums per lane, added at the end, a
+    pairwise-like order at least as accurate as the sequential one). The order is fixed
+    by the compiled loop, so every caller of ``march_into`` on one machine gets the same
+    floats."""
+    t_sum = 0.0
+    p_sum = 0.0
+    s_sum = 0.0
+    for i in range(held):
+        x2 = xx[i]
+        w = dk - x2
+        trial = u[i] + du
+        a = abs(trial)
+        margin[i] = w - a
+        slide = a > w  # the bound cuts off |trial| - w
+        slip = 0.5 * (max(d_prev - x2, 0.0) + w) * (a - w)
+        s_sum += slip if slide else 0.0
+        bound = w if trial > 0.0 else -w
+        trial = bound if slide else trial
+        u[i] = trial
+        t_sum += trial
+        p_sum += w
+    return t_sum, p_sum, s_sum
+
+
 @njit(cache=True, nogil=True)
 def march_into(x, xx, d, drive, scale, u, T, P, S, b):
     """March the springs at positions ``x`` (increasing; ``xx`` their squares x * x)
@@ -117,18 +151,22 @@ def march_into(x, xx, d, drive, scale, u, T, P, S, b):
     (w_+(start) + w(end)) / 2, times the slip (the part of the trial displacement the
     bound cut off): the frictional dissipation in units of T0 times the unit of u
     (exact for a spring that slides through the whole step with w linear in time,
-    second order otherwise). b: the stick radius b / a* of each step, or an empty array
-    for none (the margins of the stick test are then not kept: the march alone).
+    second order otherwise). b: the stick radius b / a* of each step, or None (compiled
+    without it; an empty array also means none): the march alone.
     Every reversal of the drive should be a grid point (springs are then exact there).
 
-    The springs held from the previous step and those entering are walked in two loops
-    (no per-spring test of which a spring is); a spring slides when |trial| > w (the
-    margin w - |trial| < 0) and its slip is |trial| - w = -(w - |trial|), exactly.
+    The springs held from the previous step (``_held``, in vector lanes) and those
+    entering are walked in two loops (no per-spring test of which a spring is); a spring
+    slides when |trial| > w (the margin w - |trial| < 0) and its slip is
+    |trial| - w = -(w - |trial|), exactly.
     """
     nt = d.size
     n = xx.size
-    stick = b.size > 0
-    margin = np.empty(n if stick else 0)
+    if b is None:  # compiled apart: no stick radius
+        stick = False
+    else:
+        stick = b.size > 0
+    margin = np.empty(n)
     m_prev = 0
     while m_prev < n and u[m_prev] != 0.0:
         m_prev += 1
@@ -145,23 +183,8 @@ def march_into(x, xx, d, drive, scale, u, T, P, S, b):
             m -= 1
         for i in range(m, m_prev):  # leaving springs drop their displacement
             u[i] = 0.0
-        t_sum = 0.0
-        p_sum = 0.0
-        s_sum = 0.0
         held = m if m < m_prev else m_prev
-        for i in range(held):  # in contact at the previous step: stick increment
-            x2 = xx[i]
-            w = dk - x2
-            trial = u[i] + du
-            a = abs(trial)
-            if stick:
-                margin[i] = w - a
-            if a > w:  # slides: the bound cuts off |trial| - w
-                s_sum += 0.5 * (max(d_prev - x2, 0.0) + w) * (a - w)
-                trial = w if trial > 0.0 else -w
-            u[i] = trial
-            t_sum += trial
-            p_sum += w
+        t_sum, p_sum, s_sum = _held(xx, u, held, dk, d_prev, du, margin)
         for i in range(held, m):  # entering: the drive since it touched (d = x^2 here)
             x2 = xx[i]
             w = dk - x2
@@ -169,8 +192,7 @@ def march_into(x, xx, d, drive, scale, u, T, P, S, b):
             frac = min(max(frac, 0.0), 1.0)
             trial = dr - (drive_prev + frac * du)
             a = abs(trial)
-            if stick:
-                margin[i] = w - a
+            margin[i] = w - a
             if a > w:
                 s_sum += 0.5 * (max(d_prev - x2, 0.0) + w) * (a - w)
                 trial = w if trial > 0.0 else -w
@@ -180,8 +202,9 @@ def march_into(x, xx, d, drive, scale, u, T, P, S, b):
         T[k] = scale * t_sum
         P[k] = scale * p_sum
         S[k] = scale * s_sum
-        if stick:
-            b[k] = _stick_radius(x, margin, m, dk)
+        if b is not None:
+            if stick:
+                b[k] = _stick_radius(x, margin, m, dk)
         m_prev = m
         d_prev = dk
         drive_prev = dr

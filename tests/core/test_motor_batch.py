@@ -182,8 +182,9 @@ def test_contact_merits_equal_the_scalar_api() -> None:
 
 
 def _spring_rule(x, d, drive, scale):
-    """(T, P, S) of ``mdr.march``'s rule (module docstring of core.numerics.mdr) in plain
-    Python, one spring at a time with the held/entering test inside the loop."""
+    """(T, P, S, u) of ``mdr.march``'s rule (module docstring of core.numerics.mdr) in
+    plain Python, one spring at a time with the held/entering test inside the loop, the
+    sums in the springs' order; u the springs' displacements at the end."""
     n, nt = x.size, d.size
     u = np.zeros(n)
     T, P, S = np.zeros(nt), np.zeros(nt), np.zeros(nt)
@@ -209,17 +210,18 @@ def _spring_rule(x, d, drive, scale):
             p_sum += w
         T[k], P[k], S[k] = scale * t_sum, scale * p_sum, scale * s_sum
         m_prev, d_prev, drive_prev = m, d[k], drive[k]
-    return T, P, S
+    return T, P, S, u
 
 
 def test_compiled_pieces_are_the_numpy_code_bit_for_bit() -> None:
     """The drive grid, the march and ndarray.sum, compiled, give the very same floats
     (so the solvers built on them take the very same steps); the march without the stick
-    radius (the kernel's call) gives the floats of ``mdr.march`` and of its spring rule
-    written out."""
+    radius (the kernel's call) gives the floats of ``mdr.march``; against its spring rule
+    written out, every spring's displacement is the same float and the sums over the
+    springs (in the vector lanes' order, ``mdr._held``) agree to rounding."""
     rng = np.random.default_rng(3)
     x = mdr.spring_positions(37)
-    checked = 0
+    checked = touched = 0
     for _ in range(200):
         psi = float(10.0 ** rng.uniform(-5, 6))
         tau0 = float(rng.uniform(-1.55, 1.55))
@@ -231,15 +233,28 @@ def test_compiled_pieces_are_the_numpy_code_bit_for_bit() -> None:
         d = np.maximum(rise(tau, tau0), 0.0) / c0
         d[0] = d[-1] = 0.0
         drive = psi / c0 * relative_drive(tau, tau0, v)
-        T, P, _, S = mdr.march(x, d, drive, 0.3, np.zeros(37))
+        u = np.zeros(37)
+        T, P, _, S = mdr.march(x, d, drive, 0.3, u)
         out = [np.empty(tau.size) for _ in range(3)]
-        mdr.march_into(x, x * x, d, drive, 0.3, np.zeros(37), *out, np.empty(0))  # the kernel
+        u_kernel = np.zeros(37)
+        mdr.march_into(x, x * x, d, drive, 0.3, u_kernel, *out, None)  # the kernel
         for a, b in zip(out, (T, P, S), strict=True):
             np.testing.assert_array_equal(a, b)
+        np.testing.assert_array_equal(u_kernel, u)
         if checked < 40:  # the spring rule written out, one test per spring
-            for a, b in zip(_spring_rule(x, d, drive, 0.3), (T, P, S), strict=True):
-                np.testing.assert_array_equal(a, b)
+            *sums, _ = _spring_rule(x, d, drive, 0.3)
+            half = tau.size // 2  # the contact open: the springs' displacements there
+            u_half = np.zeros(37)
+            mdr.march_into(x, x * x, d[:half], drive[:half], 0.3, u_half,
+                           *(np.empty(half) for _ in range(3)), None)
+            u_rule = _spring_rule(x, d[:half], drive[:half], 0.3)[3]
+            np.testing.assert_array_equal(u_half, u_rule)
+            touched += np.count_nonzero(u_rule)
+            for a, b in zip((T, P, S), sums, strict=True):
+                # 37 terms of either sign: rounding of order 37 eps of the largest sum
+                np.testing.assert_allclose(a, b, rtol=0.0, atol=1e-14 * np.abs(b).max())
             checked += 1
+    assert touched > 200  # springs in contact, sticking or sliding, compared
     for n in [*range(0, 300), 577, 1023, 4097]:
         a = rng.standard_normal(n) * 10.0 ** rng.uniform(-3, 3, n)
         assert designs._sum(a) == a.sum()
