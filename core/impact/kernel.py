@@ -34,7 +34,7 @@ import math
 import numpy as np
 from numba import njit
 
-from core.numerics.mdr import march
+from core.numerics.mdr import march_into
 
 #: Columns of the history array: time s, d, d', D, D', normal force f (in m_n v_n^2 /
 #: alpha*: d'' = -f), tangential force T (mu E* alpha* a*), slip work of the step.
@@ -59,7 +59,8 @@ def _normal(P, d, dv_half, h, gamma):
 @njit(cache=True, nogil=True)
 def spring_force(x, d, scale):
     """The springs' normal force, scale * sum of (d - x_i^2)_+ over the row (x increasing),
-    summed as ``march`` sums it."""
+    summed in the springs' order (``march_into`` sums the same terms in its vector lanes:
+    equal to rounding)."""
     s = 0.0
     for i in range(x.size):
         w = d - x[i] * x[i]
@@ -70,10 +71,10 @@ def spring_force(x, d, scale):
 
 
 @njit(cache=True, nogil=True)
-def step(h, d, dv, D, Dv, f, T, u, x, scale, chi, gamma, total):
+def step(h, d, dv, D, Dv, f, T, u, x, xx, scale, chi, gamma, total):
     """One Verlet step of length h from (d, d', D, D') with forces (f, T) there; u (the
     springs) is updated in place. Returns (d, d', D, D', f, T, slip work of the step in
-    mu E* alpha* a* delta*).
+    mu E* alpha* a* delta*). xx: the squares x * x of the positions.
 
     The Coulomb bound of each spring is mu times its share of the total normal force f
     (elastic plus dashpot), shared like the elastic force: mu k w with k = f / ((15/16) P)
@@ -97,8 +98,12 @@ def step(h, d, dv, D, Dv, f, T, u, x, scale, chi, gamma, total):
     dd[1] = k * max(dn, 0.0)
     dr[0] = D
     dr[1] = Dn
-    xs = x if k == 1.0 else x * math.sqrt(k)
-    Ts, _, _, Ss = march(xs, dd, dr, scale, u)
+    Ts, Ps, Ss = np.empty(2), np.empty(2), np.empty(2)
+    if k == 1.0:  # the squares the caller has
+        march_into(x, xx, dd, dr, scale, u, Ts, Ps, Ss, None)
+    else:
+        xs = x * math.sqrt(k)
+        march_into(xs, xs * xs, dd, dr, scale, u, Ts, Ps, Ss, None)
     Tn = Ts[1]
     Dvn = Dvh - 0.5 * h * kt * Tn
     return dn, dvn, Dn, Dvn, fn, Tn, Ss[1]
@@ -125,13 +130,15 @@ def impact(psi1, chi, gamma, x, scale, tol, h0, max_steps, total=True):
     adaptive = tol > 0.0
     u1 = np.empty(n)
     u2 = np.empty(n)
+    xx = x * x
     while k < max_steps:
         if adaptive:
             u1[:] = u
-            r1 = step(h, d, dv, D, Dv, f, T, u1, x, scale, chi, gamma, total)
+            r1 = step(h, d, dv, D, Dv, f, T, u1, x, xx, scale, chi, gamma, total)
             u2[:] = u
-            a = step(0.5 * h, d, dv, D, Dv, f, T, u2, x, scale, chi, gamma, total)
-            r2 = step(0.5 * h, a[0], a[1], a[2], a[3], a[4], a[5], u2, x, scale, chi, gamma,
+            a = step(0.5 * h, d, dv, D, Dv, f, T, u2, x, xx, scale, chi, gamma, total)
+            r2 = step(0.5 * h, a[0], a[1], a[2], a[3], a[4], a[5], u2, x, xx, scale, chi,
+                      gamma,
                       total)
             err = max(abs(r1[0] - r2[0]), abs(r1[1] - r2[1]),
                       abs(r1[2] - r2[2]) / scale_D, abs(r1[3] - r2[3]) / scale_D) / 3.0
@@ -147,7 +154,7 @@ def impact(psi1, chi, gamma, x, scale, tol, h0, max_steps, total=True):
             h_used = h
             h *= grow
         else:
-            r = step(h, d, dv, D, Dv, f, T, u, x, scale, chi, gamma, total)
+            r = step(h, d, dv, D, Dv, f, T, u, x, xx, scale, chi, gamma, total)
             slip = r[6]
             d, dv, D, Dv, f, T = r[0], r[1], r[2], r[3], r[4], r[5]
             s += h
