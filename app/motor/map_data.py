@@ -134,8 +134,9 @@ class MapData:
     psi: NDArray[np.float64] = field(repr=False)
     tau0: NDArray[np.float64] = field(repr=False)
 
-    def shown(self, merit: str) -> NDArray[np.float64]:
-        """`merit` in its display unit (`SHOWN`)."""
+    def image(self, merit: str) -> NDArray[np.float64]:
+        """The merit's values as the map shows them: on the grid (rows y, columns x), in
+        its display unit (`SHOWN`)."""
         return self.merits[merit] * SHOWN[merit][2]
 
     def design(self, j: int, i: int) -> dict[str, Any]:
@@ -160,6 +161,42 @@ class MapBlock:
     request: MapRequest
     start: int
     stop: int
+
+
+    @property
+    def designs(self) -> int:
+        """The block's designs: its rows times the map's columns."""
+        return (self.stop - self.start) * self.request.size
+
+
+@dataclass(frozen=True)
+class MapProgress:
+    """How far a map computed block by block is: ``done`` of its ``blocks`` blocks
+    finished, ``designs_done`` of its ``designs`` designs (the next block running)."""
+
+    request: MapRequest
+    blocks: int
+    done: int
+    designs_done: int
+
+    @classmethod
+    def of(cls, request: MapRequest, todo: list[MapBlock]) -> MapProgress:
+        """The progress of ``request`` whose blocks ``todo`` remain (the first one
+        running, every earlier one finished)."""
+        total = blocks(request)
+        left = sum(b.designs for b in todo)
+        return cls(request, len(total), len(total) - len(todo), request.size ** 2 - left)
+
+    @property
+    def designs(self) -> int:
+        return self.request.size ** 2
+
+    def status(self) -> str:
+        """The status line: the map, the block running and the designs done."""
+        n = self.request.size
+        part = (f": block {self.done + 1} of {self.blocks}, {self.designs_done} of "
+                f"{self.designs} designs done" if self.blocks > 1 else "")
+        return f"computing a {n} × {n} map ({self.designs} designs){part}…"
 
 
 def blocks(request: MapRequest) -> list[MapBlock]:

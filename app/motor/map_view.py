@@ -31,7 +31,7 @@ from app.kit.a11y import expandable_card
 from app.kit.batch import held
 from app.kit.figures import fit_range, new_figure, style_figure
 from app.kit.jobs import RUNNER
-from app.kit.progress import JobProgress
+from app.kit.progress import CSS, HIDDEN, SHOWN
 from app.kit.widgets import ERROR_STYLE, text_html
 from app.motor.fields import FIELDS, check
 from app.motor.state import MotorState
@@ -42,6 +42,34 @@ INPUTS = (*FIELDS, "rod_material", "flat")
 FRONT_DEFAULT = ("stall_thrust", "best_efficiency")
 #: Columns of the map's image source beside the merits: each pixel's design (axes).
 AX, AY = "ax", "ay"
+
+
+class MapProgressBar(pn.viewable.Viewer):
+    """The map's progress bar: the designs done of the map's designs, shown while
+    `busy` and hidden by its host's style otherwise (as `app.kit.progress.JobProgress`,
+    so that nothing around it moves)."""
+
+    busy = param.Boolean(default=False, doc="a map's blocks are being computed")
+    done = param.Integer(default=0, bounds=(0, None), doc="designs done")
+    total = param.Integer(default=1, bounds=(1, None), doc="designs of the map")
+
+    def __init__(self, width: int = 180) -> None:
+        super().__init__()
+        self._bar = pn.indicators.Progress(value=0, max=1, active=False, width=width,
+                                           css_classes=["motor-map-progress"],
+                                           styles=HIDDEN, stylesheets=[CSS])
+
+    def __panel__(self) -> pn.indicators.Progress:
+        return self._bar
+
+    def show(self, progress: md.MapProgress) -> None:
+        """Show how far the map is (`map_data.MapProgress`)."""
+        self.param.update(busy=True, total=progress.designs, done=progress.designs_done)
+
+    @param.depends("busy", "done", "total", watch=True)
+    def _draw(self) -> None:
+        self._bar.param.update(max=self.total, value=self.done,
+                               styles=SHOWN if self.busy else HIDDEN)
 
 
 def merit_label(name: str) -> str:
@@ -101,7 +129,7 @@ class DesignMap(pn.viewable.Viewer):
         self.merit_select.param.watch(lambda e: self.show(), "value")
         for w in (self.front_x, self.front_y):
             w.param.watch(lambda e: self.show_front(), "value")
-        self.progress = JobProgress(width=180)
+        self.progress = MapProgressBar(width=180)
         self.status = pn.pane.HTML("", name="motor_map_status", sizing_mode="stretch_width")
         self.message = pn.pane.HTML("", name="motor_map_message", visible=False,
                                     styles=ERROR_STYLE, sizing_mode="stretch_width")
@@ -184,18 +212,17 @@ class DesignMap(pn.viewable.Viewer):
             return
         if self._computing is not None and self._computing[0] == request:
             return  # its blocks are on their way
-        self.progress.busy = True
         self._computing = (request, object())
         self._submit(self._computing, md.blocks(request), [])
 
     def _submit(self, chain: tuple[md.MapRequest, object], todo: list[md.MapBlock],
                 parts: list[md.MapData]) -> None:
         """Ask the runner for the next block of the map (one job; a newer map's first
-        block replaces it while it waits), saying how far the map is."""
-        n = chain[0].size
-        done, total = len(parts), len(parts) + len(todo)
-        part = f", block {done + 1} of {total}" if total > 1 else ""
-        self.status.object = text_html(f"computing a {n} × {n} map ({n * n} designs{part})…")
+        block replaces it while it waits), saying how far the map is (the bar: designs
+        done; the status: the block running)."""
+        progress = md.MapProgress.of(chain[0], todo)
+        self.progress.show(progress)
+        self.status.object = text_html(progress.status())
         RUNNER.submit(self, partial(md.compute, todo[0]),
                       partial(self._done, chain, todo, parts))
 
@@ -236,13 +263,13 @@ class DesignMap(pn.viewable.Viewer):
         X, Y = np.meshgrid(data.x, data.y)
         dx, dy = np.ptp(data.x) / (data.x.size - 1), np.ptp(data.y) / (data.y.size - 1)
         left, bottom = data.x[0] - 0.5 * dx, data.y[0] - 0.5 * dy
-        image = data.shown(merit)
+        image = data.image(merit)
         finite = image[np.isfinite(image)]
         with held():
             self.source.data = {
                 "image": [image], "x": [left], "y": [bottom], "dw": [dx * data.x.size],
                 "dh": [dy * data.y.size], AX: [X], AY: [Y],
-                **{n: [data.shown(n)] for n in md.SHOWN}}
+                **{n: [data.image(n)] for n in md.SHOWN}}
             lo, hi = (float(finite.min()), float(finite.max())) if finite.size else (0, 1)
             self.mapper.update(low=lo, high=hi if hi > lo else lo + 1.0)
             self.colorbar.title = merit_label(merit)
@@ -273,7 +300,7 @@ class DesignMap(pn.viewable.Viewer):
         if d is None:
             return
         a_name, b_name = self.front_x.value, self.front_y.value
-        a, b = d.shown(a_name), d.shown(b_name)
+        a, b = d.image(a_name), d.image(b_name)
         if a_name == b_name:
             self.show_message("the Pareto front needs two different merits")
             index: list[tuple[int, int]] = []

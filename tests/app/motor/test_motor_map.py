@@ -202,6 +202,22 @@ def test_a_map_from_its_row_blocks_is_the_map_computed_at_once(monkeypatch) -> N
             for n in (6, 60)] == [3, 60]  # rows of 14 // n designs, at least one
 
 
+def test_a_map_s_progress_counts_its_blocks_and_designs(monkeypatch) -> None:
+    """The progress of a map in blocks: the block running, the blocks and designs done
+    (the last block what remains), and no block named for a map of one block."""
+    monkeypatch.setattr(md, "BLOCK_DESIGNS", 14)  # 7 x 7: blocks of 2 rows, the last 1
+    request = md.MapRequest.of(MotorState().values(), "x0", "N", 7)
+    parts = md.blocks(request)
+    seen = [md.MapProgress.of(request, parts[k:]) for k in range(len(parts))]
+    assert [(p.done, p.blocks, p.designs_done, p.designs) for p in seen] == [
+        (0, 4, 0, 49), (1, 4, 14, 49), (2, 4, 28, 49), (3, 4, 42, 49)]
+    assert seen[3].status() == ("computing a 7 × 7 map (49 designs): block 4 of 4, 42 of 49 "
+                                "designs done…")
+    small = md.MapRequest.of(MotorState().values(), "x0", "N", 3)
+    assert md.MapProgress.of(small, md.blocks(small)).status() == ("computing a 3 × 3 map "
+                                                                   "(9 designs)…")
+
+
 def finished(m) -> None:
     """Wait until the card's map has all its blocks (each asks for the next when done)."""
     for _ in range(100):
@@ -215,10 +231,20 @@ def test_the_card_computes_a_map_block_by_block_and_a_newer_map_replaces_it(
         scene, monkeypatch) -> None:
     m = opened(scene)
     monkeypatch.setattr(md, "BLOCK_DESIGNS", 12)  # 6 x 6: 3 blocks of 2 rows
+    bar = m.progress.__panel__()
+    seen: list[tuple] = []  # (status, bar's value, bar's max, shown) as each block starts
+    m.status.param.watch(lambda e: seen.append((e.new, bar.value, bar.max,
+                                                bar.styles["visibility"])), "object")
     with Watched(RUNNER) as jobs:
         m.x_select.value = "A"
         finished(m)
     assert jobs.ran.count(m) == 3  # one job per block
+    seen = [row for row in seen if row[0].startswith("computing")]
+    assert [row[1:] for row in seen] == [(0, 36, "visible"), (12, 36, "visible"),
+                                         (24, 36, "visible")]
+    assert [f"block {k} of 3, {12 * (k - 1)} of 36 designs done" in row[0]
+            for k, row in enumerate(seen, 1)] == [True] * 3
+    assert bar.styles["visibility"] == "hidden" and not m.progress.busy  # the map shown
     expected = md.compute(md.MapRequest.of(scene.state.values(), "A", "N", 6))
     assert m.data.request == expected.request and m.cache.get(expected.request) is m.data
     np.testing.assert_array_equal(m.data.merits["stall_thrust"], expected.merits["stall_thrust"])

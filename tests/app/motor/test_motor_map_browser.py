@@ -53,7 +53,7 @@ def test_the_design_map_computes_shows_every_merit_and_a_click_loads_a_design(
         assert shape == [SIZE, SIZE]
         merit = "stall_thrust" if col == "image" else col
         np.testing.assert_array_equal(np.array(flat, float),
-                                      expected.shown(merit).ravel())  # nan where refused
+                                      expected.image(merit).ravel())  # nan where refused
     _, ax = page.evaluate(IMAGE, ["motor_map", "ax"])
     np.testing.assert_array_equal(np.reshape(ax, (SIZE, SIZE))[0], expected.x)
     # a design in the model's range: its hover names every merit, a click loads it
@@ -67,7 +67,7 @@ def test_the_design_map_computes_shows_every_merit_and_a_click_loads_a_design(
     text = tooltip.inner_text()
     for label, unit, _ in md.SHOWN.values():
         assert f"{label} ({unit})" in text
-    assert f"{expected.shown('stall_thrust')[j, i]:.4g}" in text  # this design's
+    assert f"{expected.image('stall_thrust')[j, i]:.4g}" in text  # this design's
     page.mouse.click(sx + 3, sy - 3)  # (within the design's cell)
     page.wait_for_function("(x) => __slider('motor_x0').value === x", arg=x, timeout=20_000)
     page.wait_for_function("(n) => __slider('motor_N').value === n", arg=y, timeout=20_000)
