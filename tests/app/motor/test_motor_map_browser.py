@@ -2,7 +2,8 @@
 opened inside the Motor card, a small map computed on the runner, its image and hover
 columns held in the browser equal to the server's kernel, the hover naming every merit
 of the design under the pointer, and a click of the real mouse on the image loading
-that design's x0 and preload into the card."""
+that design's x0 and preload into the card; a map of several blocks advancing its
+progress bar block by block."""
 
 from __future__ import annotations
 
@@ -24,6 +25,16 @@ IMAGE = """([name, col]) => {
   const v = m.data instanceof Map ? m.data.get(col) : m.data[col];
   if (v == null || v.length !== 1) return null;
   return [Array.from(v[0].shape), Array.from(v[0])];
+}"""
+#: JavaScript: the map's progress bar as [value, max, shown] (null: not on the page).
+BAR = """() => {
+  const m = Bokeh.documents[0].all_models;
+  const bar = [...m].find((x) => x.css_classes != null
+    && x.css_classes.includes('motor-map-progress'));
+  if (bar == null) return null;
+  const st = bar.styles;
+  const shown = (st instanceof Map ? st.get('visibility') : st.visibility) === 'visible';
+  return [bar.value, bar.max, shown];
 }"""
 #: JavaScript: the page position of the map's data point (x, y), the map scrolled into
 #: the middle of the window.
@@ -75,6 +86,18 @@ def test_the_design_map_computes_shows_every_merit_and_a_click_loads_a_design(
                            timeout=20_000)
     mark = page.evaluate("() => [__col('motor_map_mark', 'x'), __col('motor_map_mark', 'y')]")
     assert mark == [[x], [y]]
+    # a map of several row blocks: the bar shows the designs done advance block by block
+    big = 40  # 1600 designs: 7 blocks of 240 (6 rows), the last of 4 rows
+    box.fill(str(big))
+    box.press("Enter")
+    page.wait_for_function(f"() => {{ const b = ({BAR})(); return b != null && b[0] > 0"
+                           f" && b[0] < b[1] && b[1] === {big * big} && b[2]; }}",
+                           timeout=60_000)
+    page.wait_for_function(f"(a) => {{ const got = ({IMAGE})(a); return got != null"
+                           f" && got[0][0] === {big}; }}", arg=["motor_map", "image"],
+                           timeout=120_000)
+    page.wait_for_function(f"() => {{ const b = ({BAR})(); return b != null && !b[2]; }}",
+                           timeout=20_000)  # hidden with the map shown
     assert errors(console) == []
     page.close()
 
