@@ -67,7 +67,7 @@ MOTORS = (Motor(ROD, R=5e-3, G=24e9, nu=0.31, mu=0.2, preload=0.05),
 #: (motor, x0, load): two rotors at 8 points of the rod, under 1 mN.
 DESIGNS = [(m, float(x), 1e-3) for m in MOTORS for x in np.linspace(-0.016, -0.0002, 8)]
 K, HARD = 1e-6, 5e9
-#: The study of the scaling figure: 96 x 20 designs, 24 chunks of 80 (~0.4 s each: the
+#: The study of the scaling figure: 96 x 80 designs, 24 chunks of 320 (~0.4 s each: the
 #: client writes ~20 ms of CPU per chunk, so much smaller chunks would time the client,
 #: and far fewer would leave one worker idle at the end).
 #: A round is quiet when the other jobs on the machine took at most this many cores
@@ -76,7 +76,7 @@ QUIET_CORES = 0.5
 SCALING_TOML = """
 [study]
 name = "bench"
-block = 80
+block = 320
 [design]
 load = 1e-3
 [axes.x0]
@@ -86,7 +86,7 @@ num = 96
 [axes.preload]
 start = 0.02
 stop = 0.5
-num = 20
+num = 80
 spacing = "log"
 """
 
@@ -254,7 +254,7 @@ def scaling(repeat: int) -> dict[str, object]:
 
     spec = spec_from_toml(SCALING_TOML)
     warm = spec_from_toml(SCALING_TOML.replace("num = 96", "num = 2")
-                          .replace("num = 20", "num = 2"))
+                          .replace("num = 80", "num = 2"))
     rounds: list[dict[str, object]] = []
     with tempfile.TemporaryDirectory() as tmp, ExitStack() as stack:
         clients = {}
