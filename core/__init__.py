@@ -17,17 +17,18 @@ arrays of contacts), ``core.impulse_ratio`` (eq 41 over arrays of psi and tau0) 
 from core import batch
 from core.contact import Contact, curve, impulse_ratio
 from core.coulomb import CoulombReport, coulomb_certificate
-from core.materials import PRESETS, Material
-from core.physical import MATERIALS, PhysicalInputs, Scales, dundurs_beta, equivalent_pair
+from core.materials import DRY_MU, MATERIALS, MOTOR_MATERIALS, Material
+from core.physical import PhysicalInputs, Scales, dundurs_beta, equivalent_pair
 from core.tangential import PHASE_NAMES, Phase
 from core.validation import DOMAIN, MOTOR_DOMAIN, PSI_MAX, Interval
 
 __all__ = [
     "DOMAIN",
+    "DRY_MU",
     "MATERIALS",
     "MOTOR_DOMAIN",
+    "MOTOR_MATERIALS",
     "PHASE_NAMES",
-    "PRESETS",
     "PSI_MAX",
     "Contact",
     "CoulombReport",

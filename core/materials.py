@@ -1,5 +1,7 @@
-"""Material presets for the motor's two bodies (the rod's contact layer and the rotor),
-with their sources: isotropic elastic constants, hardness (for Archard wear) and density.
+"""The materials of core, with their sources: isotropic elastic constants, hardness (for
+Archard wear) and density (`MATERIALS`); the motor's bodies (the rod's contact layer and
+the rotor) are `MOTOR_MATERIALS`, the explorer's identical spheres are the keys of
+`DRY_MU`, which holds the typical dry friction coefficient of two bodies of each.
 
 Values are nominal, for a first estimate; a real motor's datasheet wins. Piezoceramics are
 transversely isotropic: the isotropic G and nu below are the in-plane ones,
@@ -8,8 +10,8 @@ G = 1 / (2 (s11 - s12)) and nu = -s12 / s11 from the short-circuit compliances s
 others; the in-plane values are within ~20 % of the others). Where a source gives no
 value, the entry says so in ``note`` and the value is an assumption.
 
-    from core.materials import PRESETS
-    rotor, rod = PRESETS["steel"], PRESETS["PZT-4"]
+    from core.materials import MATERIALS
+    rotor, rod = MATERIALS["steel"], MATERIALS["PZT-4"]
     Motor(rod_geometry, R=5e-3, G=rotor.G, nu=rotor.nu, mu=0.2, preload=0.05,
           rod_G=rod.G, rod_nu=rod.nu)
 """
@@ -47,12 +49,12 @@ def _pzt(name: str, s11: float, s12: float, density: float, source: str) -> Mate
                          "order 4-6 GPa); G, nu in-plane, from s11^E and s12^E")
 
 
-#: name -> Material. PZT: Berlincourt, Curran & Jaffe, "Piezoelectric and piezomagnetic
+#: name -> Material. PZT-4, PZT-8: Berlincourt, Curran & Jaffe, "Piezoelectric and piezomagnetic
 #: materials and their function in transducers", Physical Acoustics vol. 1A (1964), the
 #: table reproduced in manufacturers' datasheets (e.g. Morgan Electro Ceramics, "Properties
 #: of piezoelectric ceramics"): PZT-4 s11^E = 12.3, s12^E = -4.05; PZT-8 s11^E = 11.5,
 #: s12^E = -3.7 (1e-12 m^2/N).
-PRESETS: dict[str, Material] = {
+MATERIALS: dict[str, Material] = {
     "PZT-4": _pzt("PZT-4", 12.3e-12, -4.05e-12, 7500.0,
                   "Berlincourt, Curran & Jaffe (1964); Morgan Electro Ceramics datasheet"),
     "PZT-8": _pzt("PZT-8", 11.5e-12, -3.7e-12, 7600.0,
@@ -77,4 +79,31 @@ PRESETS: dict[str, Material] = {
         source="Victrex 450FC30 datasheet: tensile modulus ~13 GPa, density 1.45 g/cm^3",
         note="nu = 0.40 assumed (unfilled PEEK); G = E / (2 (1 + nu)); hardness assumed "
              "(~30 HV, of the order of unfilled PEEK's)"),
+    "aluminium": Material(
+        "aluminium alloy (6061-T6)", G=26.0e9, nu=0.33, hardness=1.05e9, density=2700.0,
+        source="ASM Handbook vol. 2, 6061-T6: E = 68.9 GPa, G = 26 GPa, nu = 0.33, "
+               "density 2.70 g/cm^3, 107 HV"),
+    "glass": Material(
+        "soda-lime glass", G=28.7e9, nu=0.22, hardness=5.5e9, density=2500.0,
+        source="handbook values for soda-lime glass (CRC Handbook of Chemistry and "
+               "Physics; Shelby, Introduction to Glass Science and Technology): "
+               "E = 70 GPa, nu = 0.22, density 2.5 g/cm^3, ~550 HV"),
+    "PZT ceramic": Material(
+        "PZT ceramic (soft, typical)", G=24.0e9, nu=0.31, hardness=5.0e9, density=7700.0,
+        source="typical of soft PZT ceramics (Morgan Electro Ceramics datasheet: PZT-5A "
+               "and PZT-5H, 1 / s11^E = 61 GPa, density 7.5-7.75 g/cm^3): "
+               "E = 63 GPa, nu = 0.31",
+        note="an isotropic stand-in of round numbers between PZT-5A's and PZT-5H's "
+             "in-plane constants; hardness assumed as for PZT-4 and PZT-8"),
 }
+
+#: The motor's materials (its rod's contact layer and its rotor), in its menus' order.
+MOTOR_MATERIALS: tuple[str, ...] = ("PZT-4", "PZT-8", "alumina", "steel",
+                                    "phosphor bronze", "PEEK composite")
+
+#: A typical dry friction coefficient of two bodies of one material, for the explorer's
+#: identical spheres (its materials: the keys). A friction coefficient belongs to a pair
+#: of surfaces and their state (roughness, films, humidity), not to a material: these are
+#: starting values for a first estimate, meant to be edited.
+DRY_MU: dict[str, float] = {"steel": 0.2, "aluminium": 0.3, "glass": 0.3,
+                            "PZT ceramic": 0.2}

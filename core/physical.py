@@ -128,16 +128,6 @@ def second_body(R2: object, G2: object, nu2: object) -> tuple[float | None, ...]
     return R2_, G2_, nu2_
 
 
-#: Typical handbook values for identical spheres of one material (G in Pa); the friction
-#: coefficient is a typical dry value for the pair and is meant to be edited.
-MATERIALS: dict[str, dict[str, float]] = {
-    "steel": {"G": 79.3e9, "nu": 0.29, "mu": 0.2},
-    "aluminium": {"G": 26.0e9, "nu": 0.33, "mu": 0.3},
-    "glass": {"G": 28.7e9, "nu": 0.22, "mu": 0.3},
-    "PZT ceramic": {"G": 24.0e9, "nu": 0.31, "mu": 0.2},
-}
-
-
 @dataclass(frozen=True)
 class PhysicalInputs:
     """SI inputs of eq 3: radius R (m), shear modulus G (Pa), Poisson ratio nu, friction

@@ -217,7 +217,7 @@ class BemCard(pn.viewable.Viewer):
                 ("Identical bodies: the error over ν", "ν", (("nu", "identical bodies"),)),
                 ("Dissimilar bodies: the error over β", "Dundurs' β",
                  (("sweep", f"β sweep (ν = {SWEEP_NU:g})"),
-                  ("pairs", "core.PRESETS pairs")))):
+                  ("pairs", "core.MOTOR_MATERIALS pairs")))):
             fig = new_figure(title, x_label, "worst |T − T_closed| / T₀", y_axis_type="log",
                              height=340, tools="pan,wheel_zoom,reset,save")
             xs = np.concatenate([columns[p]["x"] for p, _ in parts])

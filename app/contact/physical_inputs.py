@@ -17,9 +17,9 @@ old value back without a word).  A value outside its
 sensible range is used and a warning under the box says so.  What the core refuses of
 the inputs together (e.g. |h| >= H) is shown under the boxes in core's words.
 
-A material (`core.MATERIALS`) sets G, nu and mu and switches the physical inputs on:
-choosing one is asking for that physical contact, so it never changes mu and nu of a
-dimensionless contact unseen.
+A material (G and nu of `core.MATERIALS`, mu of `core.DRY_MU`) sets G, nu and mu and
+switches the physical inputs on: choosing one is asking for that physical contact, so it
+never changes mu and nu of a dimensionless contact unseen.
 """
 
 from __future__ import annotations

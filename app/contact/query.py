@@ -21,7 +21,7 @@ from app.contact.state import (
     parse_tau,
     parse_value,
 )
-from core import MATERIALS, Contact
+from core import DRY_MU, Contact
 
 
 def query_value(raw: str | bytes | list) -> str:
@@ -68,13 +68,13 @@ def parse_query(query: Mapping[str, str | bytes | list]) -> tuple[dict, list[str
 
     if "material" in flat:
         name = flat["material"]
-        if name in MATERIALS:
+        if name in DRY_MU:
             values.update(material_values(name))
         elif name == "custom":
             values["material"] = name
         else:
             messages.append(f"material = {name!r} is unknown "
-                            f"(known: {', '.join(MATERIALS)}, custom)")
+                            f"(known: {', '.join(DRY_MU)}, custom)")
 
     if "drive" in flat:
         if flat["drive"] in DRIVES:

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import param
 
-from core import DOMAIN, MATERIALS, Contact
+from core import DOMAIN, DRY_MU, MATERIALS, Contact
 from core.validation import Interval
 
 SQRT2_1 = math.sqrt(2.0) + 1.0  # psi of the paper's Figs. 4, 6 and 9 (tau1 = 3 pi / 4)
@@ -188,10 +188,10 @@ DEFAULT_PRESET = "fig6e"
 
 
 def material_values(name: str) -> dict:
-    """The state's parameters material `name` (a key of `core.MATERIALS`) sets: its G
+    """The state's parameters material `name` (a key of `core.DRY_MU`) sets: its G
     (Pa), nu and mu, the physical inputs on (`ExplorerState.apply_material`)."""
     m = MATERIALS[name]
-    return dict(material=name, G=m["G"], nu=m["nu"], mu=m["mu"], physical=True)
+    return dict(material=name, G=m.G, nu=m.nu, mu=DRY_MU[name], physical=True)
 
 
 class ExplorerState(param.Parameterized):
@@ -219,8 +219,8 @@ class ExplorerState(param.Parameterized):
                              "follows psi unless drive = 'angle'")
 
     physical = param.Boolean(default=False, doc="define the contact by SI inputs")
-    material = param.Selector(default="custom", objects=["custom", *MATERIALS],
-                              doc="the core.MATERIALS entry G, nu and mu are those of, "
+    material = param.Selector(default="custom", objects=["custom", *DRY_MU],
+                              doc="the core.DRY_MU material G, nu and mu are those of, "
                                   "'custom' once one of them differs")
     R = param.Number(default=0.01, **bounds("R"), doc="sphere radius (m)")
     G = param.Number(default=79e9, **bounds("G"), doc="shear modulus (Pa)")
@@ -336,16 +336,16 @@ class ExplorerState(param.Parameterized):
         self.param.update(**{k: self.param[k].default for k in (*SI_KEYS, "material")})
 
     def apply_material(self, name: str) -> None:
-        """Copy G (Pa), nu and mu of `core.MATERIALS[name]` into the state and switch the
-        physical inputs on (a material is a physical contact's; it never changes mu and
-        nu of a dimensionless one unseen); KeyError if unknown."""
+        """Copy G (Pa), nu (`core.MATERIALS[name]`) and mu (`core.DRY_MU[name]`) into the
+        state and switch the physical inputs on (a material is a physical contact's; it
+        never changes mu and nu of a dimensionless one unseen); KeyError if unknown."""
         self.param.update(**material_values(name))
 
     @param.depends("G", "nu", "mu", watch=True)
     def _leave_material(self) -> None:
         """`material` names the material whose G, nu and mu are the state's: another
         value of one of them (a slider, a typed value, a preset) leaves it."""
-        m = MATERIALS.get(self.material)
+        m = material_values(self.material) if self.material in DRY_MU else None
         if m is not None and (self.G, self.nu, self.mu) != (m["G"], m["nu"], m["mu"]):
             self.material = "custom"
 

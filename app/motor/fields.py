@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from core import MOTOR_DOMAIN
-from core.materials import PRESETS as MATERIALS
+from core.materials import MATERIALS, MOTOR_MATERIALS
 from core.motor import Motor, Rod
 from core.validation import DOMAIN, Interval
 
@@ -121,7 +121,7 @@ ROD_PRESETS: dict[str, Preset] = {
 
 
 def _rotor(key: str, mu: float) -> Preset:
-    """A rotor of material `key` (G, nu from `core.materials.PRESETS`), R = 5 mm,
+    """A rotor of material `key` (G, nu from `core.materials.MATERIALS`), R = 5 mm,
     N = 0.5 N, and a dry friction coefficient mu."""
     m = MATERIALS[key]
     return Preset(f"{key} rotor, R = 5 mm, N = 0.5 N",
@@ -131,9 +131,9 @@ def _rotor(key: str, mu: float) -> Preset:
 ROTOR_PRESETS: dict[str, Preset] = {"steel": _rotor("steel", 0.2),
                                     "alumina": _rotor("alumina", 0.3)}
 #: The rod's contact layer: '' the rotor's material (the paper's identical bodies), or a
-#: material of `core.materials.PRESETS`.
+#: material of `core.materials.MOTOR_MATERIALS`.
 ROD_MATERIALS: dict[str, str] = {"": "same as the rotor (the paper's identical bodies)",
-                                 **{k: m.name for k, m in MATERIALS.items()}}
+                                 **{k: MATERIALS[k].name for k in MOTOR_MATERIALS}}
 DEFAULT_ROD, DEFAULT_ROTOR, DEFAULT_X0 = "pzt40", "steel", -5.0
 
 

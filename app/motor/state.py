@@ -2,8 +2,9 @@
 
 A URL names the presets it uses (`motor_rod`, `motor_rotor`) and writes the other fields
 whose values differ from the presets' or the defaults' as the shortest text that reads
-back as the same float; x0 always.  `motor_material` is the rod's contact layer (a key of
-`core.materials.PRESETS`; absent: the rotor's material), `motor_flat=1` a flat rod face.
+back as the same float; x0 always.  `motor_material` is the rod's contact layer (one of
+`core.materials.MOTOR_MATERIALS`; absent: the rotor's material), `motor_flat=1` a flat
+rod face.
 """
 
 from __future__ import annotations
@@ -45,7 +46,7 @@ class MotorState(param.Parameterized):
     rod_preset = param.String(default=DEFAULT_ROD, doc="rod preset key, '' once edited")
     rotor_preset = param.String(default=DEFAULT_ROTOR, doc="rotor preset key, '' once edited")
     rod_material = param.Selector(default="", objects=list(ROD_MATERIALS), doc=(
-        "the rod's contact layer: a key of core.materials.PRESETS, '' the rotor's"))
+        "the rod's contact layer: a key of core.materials.MOTOR_MATERIALS, '' the rotor's"))
     flat = param.Boolean(default=False, doc="the rod's face is flat (rod_R = inf)")
     L = param.Number(default=20.0, doc="rod half-length (mm)")
     delta = param.Number(default=4.0, doc="rod thickness (mm)")

@@ -44,7 +44,7 @@ from pathlib import Path
 import numpy as np
 
 from core import Contact
-from core.materials import PRESETS
+from core.materials import MATERIALS
 from core.motor import (
     Motor,
     Rod,
@@ -60,7 +60,7 @@ from core.motor.designs import MERITS
 
 RESULTS = Path(__file__).resolve().parents[1] / "results" / "study_benchmark.json"
 ROD = Rod(half_length=0.02, thickness=4e-3, nu_rod=0.3, amplitude=10e-6, frequency=40e3)
-STEEL, PZT = PRESETS["steel"], PRESETS["PZT-4"]
+STEEL, PZT = MATERIALS["steel"], MATERIALS["PZT-4"]
 MOTORS = (Motor(ROD, R=5e-3, G=24e9, nu=0.31, mu=0.2, preload=0.05),
           Motor(ROD, R=5e-3, G=STEEL.G, nu=STEEL.nu, mu=0.2, preload=0.05, rod_G=PZT.G,
                 rod_nu=PZT.nu, rod_R=math.inf))

@@ -1,9 +1,9 @@
 """The closed form's error against the boundary-element referee, mapped over the material
 pair for the paper's loading: identical bodies over nu in [0, 0.5) (Cattaneo-Mindlin's
 neglected transverse traction), and dissimilar ones over Dundurs' beta (Goodman's
-neglected coupling): a sweep of beta at fixed nu and every pair of ``core.PRESETS``
-materials (body 1, the held one, first in the table's order; beta and nu_eq from
-``core.physical``).
+neglected coupling): a sweep of beta at fixed nu and every pair of the motor's materials
+(``core.MOTOR_MATERIALS``; body 1, the held one, first in the table's order; beta and
+nu_eq from ``core.physical``).
 
 Every row is run on two grids; the difference between them is the row's grid-convergence
 estimate (the error of the coarser figure, an upper estimate for the finer one).
@@ -29,7 +29,7 @@ import numpy as np
 
 from core.bem.pair import Pair
 from core.bem.paper import PaperRun, run_paper
-from core.materials import PRESETS
+from core.materials import MATERIALS, MOTOR_MATERIALS
 
 #: Poisson ratios of the identical-body rows, and the beta sweep (at SWEEP_NU).
 NUS = (0.0, 0.1, 0.2, 0.3, 0.4, 0.45, 0.49)
@@ -74,12 +74,12 @@ class MapRow:
 
 
 def cases() -> list[tuple[str, Pair]]:
-    """(label, pair) of every row: identical bodies over NUS, the beta sweep, the presets'
-    pairs."""
+    """(label, pair) of every row: identical bodies over NUS, the beta sweep, the motor's
+    materials' pairs."""
     rows = [(f"identical nu={nu:g}", Pair(nu)) for nu in NUS]
     rows += [(f"sweep nu={SWEEP_NU:g} beta={b:g}", Pair(SWEEP_NU, b)) for b in BETAS]
-    for a, b in itertools.combinations(PRESETS, 2):
-        m1, m2 = PRESETS[a], PRESETS[b]
+    for a, b in itertools.combinations(MOTOR_MATERIALS, 2):
+        m1, m2 = MATERIALS[a], MATERIALS[b]
         rows.append((f"{a} on {b}", Pair.of(m1.G, m1.nu, m2.G, m2.nu)))
     return rows
 

@@ -21,7 +21,7 @@ from app.contact.physical_inputs import FIELDS, REFUSED, box_text, display, to_s
 from app.contact.query import parse_query
 from app.contact.state import SI_KEYS
 from app.page.explorer import Explorer
-from core import DOMAIN, MATERIALS, Contact
+from core import DOMAIN, DRY_MU, MATERIALS, Contact
 
 #: The SI value of one box unit: mm, GPa, µm, and kHz of f in rad/s.
 UNIT_IN_SI = {"R": 1e-3, "G": 1e9, "H": 1e-6, "u0": 1e-6, "h": 1e-6, "omega": 2e3 * math.pi}
@@ -192,8 +192,8 @@ def test_a_material_switches_the_physical_inputs_on(ex: Explorer) -> None:
     m = MATERIALS["glass"]
     # never mu and nu of a dimensionless contact
     assert s.physical and ex.contact.controls.physical_box.value
-    assert (s.G, s.nu, s.mu) == (m["G"], m["nu"], m["mu"])
-    assert float(ex.contact.controls.physical_inputs.boxes["G"].value) == m["G"] / 1e9
+    assert (s.G, s.nu, s.mu) == (m.G, m.nu, DRY_MU["glass"]) == (28.7e9, 0.22, 0.3)
+    assert float(ex.contact.controls.physical_inputs.boxes["G"].value) == m.G / 1e9
     assert ex.contact.shown.scales == physical_contact(ex).scales
     assert ex.contact.controls.psi_slider.disabled and ex.state.query()["material"] == "glass"
     ex.contact.controls.mu_slider.value = 0.25  # another mu: no longer glass

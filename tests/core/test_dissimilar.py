@@ -12,14 +12,14 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from core import PRESETS, Contact, dundurs_beta, equivalent_pair
+from core import MATERIALS, MOTOR_MATERIALS, Contact, dundurs_beta, equivalent_pair
 from core.elliptic import impulse_factor
 from core.motor import Motor, Rod
 from core.physical import BETA_WARN, beta_warning, upper_share
 
 SI = {"R": 5e-3, "G": 79.3e9, "nu": 0.29, "mu": 0.2, "H": 1e-6, "u0": 0.8e-6, "h": 0.5e-6,
       "omega": 2 * math.pi * 40e3}
-PZT = PRESETS["PZT-4"]
+PZT = MATERIALS["PZT-4"]
 SECOND = {"R2": math.inf, "G2": PZT.G, "nu2": PZT.nu}
 
 
@@ -212,9 +212,14 @@ def test_motor_balance_uses_the_effective_constants() -> None:
 def test_presets_are_consistent() -> None:
     assert PZT.G == pytest.approx(1 / (2 * (12.3e-12 + 4.05e-12)), rel=1e-15)
     assert PZT.nu == pytest.approx(4.05 / 12.3, rel=1e-15)
-    assert PRESETS["alumina"].E == pytest.approx(370e9, rel=0.01)
-    assert PRESETS["phosphor bronze"].E == pytest.approx(110e9, rel=0.01)
-    for mat in PRESETS.values():
+    assert MATERIALS["alumina"].E == pytest.approx(370e9, rel=0.01)
+    assert MATERIALS["phosphor bronze"].E == pytest.approx(110e9, rel=0.01)
+    assert MATERIALS["aluminium"].E == pytest.approx(68.9e9, rel=0.01)  # 6061-T6
+    assert MATERIALS["glass"].E == pytest.approx(70e9, rel=0.01)  # soda-lime
+    assert MATERIALS["PZT ceramic"].E == pytest.approx(63e9, rel=0.01)
+    assert MOTOR_MATERIALS == ("PZT-4", "PZT-8", "alumina", "steel", "phosphor bronze",
+                               "PEEK composite")
+    for mat in MATERIALS.values():
         assert 1e8 < mat.G < 1e12 and -1 < mat.nu <= 0.5 and mat.hardness > 0 and mat.source
 
 

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from core.materials import PRESETS
+from core.materials import MATERIALS
 from core.motor import (
     Motor,
     Rod,
@@ -123,7 +123,7 @@ def test_design_merits_at_the_default_resolution() -> None:
     """The README's rotor, a steel ball on PZT-4 and one with psi <= 1, at the default
     MDR (200 springs, 600 steps): every merit equal to the scalar API."""
     rod = Rod(half_length=0.02, thickness=4e-3, nu_rod=0.3, amplitude=10e-6, frequency=40e3)
-    steel, pzt = PRESETS["steel"], PRESETS["PZT-4"]
+    steel, pzt = MATERIALS["steel"], MATERIALS["PZT-4"]
     motors = [Motor(rod, R=5e-3, G=24e9, nu=0.31, mu=0.2, preload=0.05),
               Motor(rod, R=5e-3, G=steel.G, nu=steel.nu, mu=0.2, preload=0.05,
                     rod_G=pzt.G, rod_nu=pzt.nu, rod_R=math.inf)]

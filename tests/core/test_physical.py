@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from core import DOMAIN, MATERIALS, Contact
+from core import DOMAIN, DRY_MU, MATERIALS, Contact
 
 # A steel pair in a 40 kHz motor: R = 5 mm, H = 1 um, u0 = 0.8 um, h = 0.5 um.
 SI = {
@@ -92,10 +92,19 @@ def test_preload_and_grazing_inputs() -> None:
 
 
 def test_materials_are_valid_inputs() -> None:
-    for name, m in MATERIALS.items():
-        c = Contact.from_physical(**{**SI, **m})
+    for name, mu in DRY_MU.items():
+        m = MATERIALS[name]
+        c = Contact.from_physical(**{**SI, "G": m.G, "nu": m.nu, "mu": mu})
         assert c.scales is not None and c.scales.T0 > 0, name
         assert np.isfinite(c.impulse_ratio)
+
+
+def test_explorer_materials_are_the_handbook_values() -> None:
+    # G (Pa), nu of core.MATERIALS and the typical dry mu of the explorer's four
+    assert {k: (MATERIALS[k].G, MATERIALS[k].nu, mu) for k, mu in DRY_MU.items()} == {
+        "steel": (79.3e9, 0.29, 0.2), "aluminium": (26.0e9, 0.33, 0.3),
+        "glass": (28.7e9, 0.22, 0.3), "PZT ceramic": (24.0e9, 0.31, 0.2)}
+    assert all(MATERIALS[k].source for k in DRY_MU)
 
 
 def test_dimensionless_contact_has_no_scales() -> None:

@@ -17,7 +17,7 @@ from dataclasses import replace
 import numpy as np
 from numpy.typing import NDArray
 
-from core.materials import PRESETS
+from core.materials import MATERIALS
 from core.motor.designs import MERITS, design_merits
 from core.motor.motor import Motor
 from core.motor.rod import Rod
@@ -59,10 +59,10 @@ def motor_of(design: BaseDesign) -> Motor:
     """The ``Motor`` of a design (ValueError if core refuses it)."""
     rod = Rod(half_length=design.half_length, thickness=design.thickness,
               nu_rod=design.nu_rod, amplitude=design.amplitude, frequency=design.frequency)
-    rotor = PRESETS[design.rotor_material]
+    rotor = MATERIALS[design.rotor_material]
     face = {}
     if design.rod_material != ROTOR:
-        m = PRESETS[design.rod_material]
+        m = MATERIALS[design.rod_material]
         face = {"rod_G": m.G, "rod_nu": m.nu, "rod_R": design.rod_radius}
     return Motor(rod, R=design.rotor_radius, G=rotor.G, nu=rotor.nu, mu=design.mu,
                  preload=design.preload, **face)
@@ -72,10 +72,10 @@ def hardness_of(design: BaseDesign) -> float:
     """Archard's hardness of the design: its own, or the softer material's."""
     if design.hardness is not None:
         return design.hardness
-    rotor = PRESETS[design.rotor_material].hardness
+    rotor = MATERIALS[design.rotor_material].hardness
     if design.rod_material == ROTOR:
         return rotor
-    return min(rotor, PRESETS[design.rod_material].hardness)
+    return min(rotor, MATERIALS[design.rod_material].hardness)
 
 
 def evaluate_chunk(spec: StudySpec, chunk: tuple[int, ...]) -> dict[str, NDArray[np.float64]]:

@@ -45,7 +45,7 @@ from typing import Any
 
 import numpy as np
 
-from core.materials import PRESETS
+from core.materials import MOTOR_MATERIALS
 from core.motor.moving_rotor import SPRINGS, STEPS, _resolution
 from core.validation import DOMAIN, MOTOR_DOMAIN, Interval, shown
 
@@ -56,8 +56,8 @@ AXES: dict[str, tuple[str, str]] = {
     "amplitude": ("m", "longitudinal amplitude A of the rod at x = L"),
     "frequency": ("Hz", "vibration frequency of the rod"),
     "rotor_radius": ("m", "radius R of the rotor's contact sphere"),
-    "rotor_material": ("", "material of the rotor (core.materials.PRESETS)"),
-    "rod_material": ("", "material of the rod's contact face (core.materials.PRESETS)"),
+    "rotor_material": ("", "material of the rotor (core.materials.MOTOR_MATERIALS)"),
+    "rod_material": ("", "material of the rod's contact face (core.materials.MOTOR_MATERIALS)"),
     "load": ("N", "load force opposing the rotor"),
 }
 MATERIAL_AXES = ("rotor_material", "rod_material")
@@ -88,7 +88,7 @@ class BaseDesign:
     and hardness (None: the softer of the two materials' hardness).
 
     Validated (ValueError naming the parameter, its value and the range) against
-    ``MOTOR_DOMAIN`` and ``DOMAIN``; materials against ``core.materials.PRESETS``.
+    ``MOTOR_DOMAIN`` and ``DOMAIN``; materials against ``core.materials.MOTOR_MATERIALS``.
     """
 
     half_length: float = 0.02
@@ -129,10 +129,10 @@ class BaseDesign:
 
 
 def check_material(name: str, value: object, where: str | None = None) -> str:
-    """value if it names a preset of ``core.materials.PRESETS`` (or, for rod_material,
+    """value if it names one of ``core.materials.MOTOR_MATERIALS`` (or, for rod_material,
     ``ROTOR``); ValueError naming the parameter (or ``where``) and the choices
     otherwise."""
-    allowed = list(PRESETS) + ([ROTOR] if name == "rod_material" else [])
+    allowed = list(MOTOR_MATERIALS) + ([ROTOR] if name == "rod_material" else [])
     if not isinstance(value, str) or value not in allowed:
         raise ValueError(f"{where or name} = {shown(value)} is not a material: choose one of "
                          f"{', '.join(allowed)}")

@@ -14,7 +14,7 @@ from test_motor_scene import wait
 
 from app.motor import MotorScene
 from app.motor.data import WEAR_POINTS, contact_key, rod_grid
-from core.materials import PRESETS
+from core.materials import MATERIALS
 from core.motor import Motor, operating_point, start_up, wear_along_rod
 from core.physical import BETA_WARN
 
@@ -35,7 +35,7 @@ def test_the_rods_material_and_face_reach_core(scene: MotorScene) -> None:
     scene.flat_box.value = True
     wait()
     s = scene.state
-    pzt = PRESETS["PZT-4"]
+    pzt = MATERIALS["PZT-4"]
     m, x0 = s.motor()
     assert (m.rod_G, m.rod_nu, m.rod_R) == (pzt.G, pzt.nu, math.inf)
     assert s.hardness == pzt.hardness / 1e9  # the softer body's (PZT, not steel)
@@ -115,8 +115,8 @@ def test_a_load_above_the_stall_thrust_is_refused_in_plain_words(scene: MotorSce
 
 def test_a_preset_rotor_sets_the_softer_hardness(scene: MotorScene) -> None:
     scene.rotor_select.value = "alumina"
-    assert scene.state.hardness == PRESETS["alumina"].hardness / 1e9
+    assert scene.state.hardness == MATERIALS["alumina"].hardness / 1e9
     scene.material_select.value = "phosphor bronze"
-    assert scene.state.hardness == PRESETS["phosphor bronze"].hardness / 1e9
+    assert scene.state.hardness == MATERIALS["phosphor bronze"].hardness / 1e9
     m, _ = scene.state.motor()
-    assert isinstance(m, Motor) and m.rod_G == PRESETS["phosphor bronze"].G
+    assert isinstance(m, Motor) and m.rod_G == MATERIALS["phosphor bronze"].G
