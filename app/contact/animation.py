@@ -93,25 +93,25 @@ class Animation(param.Parameterized):
         return float(frame_taus(self.view.shown, period=self.view.state.period)[
             frame_index(self.clock_progress(now))])
 
-    def landing(self, shown: object) -> float:
-        """The tau (rad) a pause lands on: `shown`, the tau of the frame the browser showed
+    def landing(self, frame_tau: object) -> float:
+        """The tau (rad) a pause lands on: `frame_tau`, the tau of the frame the browser showed
         at the press, when it is a finite number within the contact on screen; else (a
         report no page of this app sends, or none) the tau of the server's clock."""
         lo, hi = self.span()
-        if finite(shown) and lo <= shown <= hi:
-            return float(shown)
-        if shown is not None:
-            log.debug("refused the frame's tau %.80r from the browser", shown)
+        if finite(frame_tau) and lo <= frame_tau <= hi:
+            return float(frame_tau)
+        if frame_tau is not None:
+            log.debug("refused the frame's tau %.80r from the browser", frame_tau)
         return self.clock_tau()
 
-    def press(self, shown: object) -> None:
+    def press(self, frame_tau: object) -> None:
         """Play / Pause pressed: play, or pause on the frame the browser showed at the
-        press, `shown` (its tau in rad, checked by `landing`)."""
+        press, `frame_tau` (its tau in rad, checked by `landing`)."""
         state = self.view.state
         if not state.playing:
             state.playing = True
             return
-        self.stop_at = self.landing(shown)
+        self.stop_at = self.landing(frame_tau)
         try:
             state.playing = False
         finally:

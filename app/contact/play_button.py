@@ -31,20 +31,20 @@ button.classList.toggle("playing", data.playing);
 #: JavaScript: a press, with the tau of the frame the player shows (null when stopped).
 _PRESS = """
 const player = window.__zharii_player;
-data.shown = player != null && player.shown != null ? player.shown : null;
+data.frame_tau = player != null && player.shown != null ? player.shown : null;
 data.clicks = data.clicks + 1;
 """
 
 
 class PlayButton(pn.reactive.ReactiveHTML):
     """Play / Pause: `label` and colour follow `playing` (`show`); each press adds one to
-    `clicks` after setting `shown` to the tau (rad) of the frame the browser's player
+    `clicks` after setting `frame_tau` to the tau (rad) of the frame the browser's player
     shows, None when it is stopped (a value from the browser: check it before use)."""
 
     label = param.String(default=PLAY_LABEL)
     playing = param.Boolean(default=False)
     clicks = param.Integer(default=0)
-    shown = param.Parameter(default=None)
+    frame_tau = param.Parameter(default=None)
 
     _template = '<button type="button" id="button" onclick="${script(\'press\')}"></button>'
 

@@ -302,7 +302,7 @@ def connect(view: ContactView) -> None:
     sync(ui.period_box, s.param.period)
     ui.preset_select.param.watch(partial(choose_preset, s), "value")
     ui.reset_button.on_click(lambda _: (s.reset(), ui.clear_refusals()))
-    ui.play_button.param.watch(lambda _: view.animation.press(ui.play_button.shown),
+    ui.play_button.param.watch(lambda _: view.animation.press(ui.play_button.frame_tau),
                                "clicks")
     ui.step_button.on_click(lambda _: view.animation.step())
     # the state's values into the sliders

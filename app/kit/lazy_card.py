@@ -19,15 +19,15 @@ from app.kit.batch import held
 
 class LazyCard:
     """A collapsed Panel card (`card`, an `expandable_card`) titled `title`, whose
-    objects `build()` returns on its first opening; `opened(first)` (if given) runs
+    objects `build()` returns on its first opening; `on_open(first)` (if given) runs
     after it on every opening, with whether it was the first.  Both run in one `held`
     batch: what the opening builds and shows reaches the browser in one message.
     `params` go to the card (default: the column's width, a margin of 6 px)."""
 
     def __init__(self, title: str, build: Callable[[], list],
-                 opened: Callable[[bool], None] | None = None, **params) -> None:
+                 on_open: Callable[[bool], None] | None = None, **params) -> None:
         self._build = build
-        self._opened = opened
+        self._on_open = on_open
         params = {"sizing_mode": "stretch_width", "margin": 6} | params
         self.card = expandable_card(title=title, collapsed=True, **params)
         self.card.param.watch(self._on_collapsed, "collapsed")
@@ -41,7 +41,7 @@ class LazyCard:
         return bool(self.card.objects)
 
     @property
-    def shown(self) -> bool:
+    def opened(self) -> bool:
         """Whether the card is open."""
         return not self.card.collapsed
 
@@ -52,5 +52,5 @@ class LazyCard:
         with held():
             if first:
                 self.card.objects = list(self._build())
-            if self._opened is not None:
-                self._opened(first)
+            if self._on_open is not None:
+                self._on_open(first)

@@ -124,10 +124,10 @@ class MethodsScene:
         return self._body()
 
     @property
-    def shown(self) -> bool:
+    def opened(self) -> bool:
         """Whether the scene is expanded (the closed form and live runs follow the
         parameters only then)."""
-        return self.lazy.shown
+        return self.lazy.opened
 
     def _on_opened(self, first: bool) -> None:
         """Catch up with the parameters; on the first opening, run the methods chosen
@@ -148,7 +148,7 @@ class MethodsScene:
         """New parameters: redraw the closed form; rerun the methods if live (only
         while the scene is shown; expanding it catches up)."""
         self._contact = c
-        if not self.shown:
+        if not self.opened:
             return
         tau = c.tau_grid(CURVE_POINTS)
         line = c.at(tau)

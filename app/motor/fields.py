@@ -53,7 +53,7 @@ class Field:
         """The label with its unit, e.g. 'L, rod half-length (mm)'."""
         return f"{self.label} ({self.unit})" if self.unit else self.label
 
-    def shown(self, value: float) -> str:
+    def text(self, value: float) -> str:
         """'L = 20 mm': the value with its symbol and unit."""
         return f"{self.symbol} = {value:.6g}{f' {self.unit}' if self.unit else ''}"
 
@@ -196,16 +196,16 @@ def check(name: str, raw: Any, values: Mapping[str, Any]) -> float:
     if not math.isfinite(value):
         raise ValueError(f"{f.symbol} must be a finite number, not {value}")
     if f.domain is not None and not f.domain.contains(f.si(value)):
-        raise ValueError(f"{f.shown(value)} is outside the allowed range {f.allowed()}")
+        raise ValueError(f"{f.text(value)} is outside the allowed range {f.allowed()}")
     L, x0 = (value, values["x0"]) if name == "L" else (values["L"], value)
     if name == "x0" and not abs(x0) < L:
-        raise ValueError(f"{f.shown(value)} is off the rod: x₀ must lie between "
+        raise ValueError(f"{f.text(value)} is off the rod: x₀ must lie between "
                          f"-{L:.6g} and {L:.6g} mm (the rod's ends excluded)")
     if name == "L" and not abs(x0) < L:
-        raise ValueError(f"{f.shown(value)} would leave the rotor (x₀ = {x0:.6g} mm) off "
+        raise ValueError(f"{f.text(value)} would leave the rotor (x₀ = {x0:.6g} mm) off "
                          f"the rod: move x₀ inside ±{L:.6g} mm first")
     try:
         joint({**values, name: value})
     except ValueError as err:
-        raise ValueError(f"{f.shown(value)} is refused: {err}") from None
+        raise ValueError(f"{f.text(value)} is refused: {err}") from None
     return value

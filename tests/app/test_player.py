@@ -16,7 +16,7 @@ from app.contact.view import ContactView
 def press(view: ContactView, shown: object) -> None:
     """What a press in the browser sends: the tau of the frame shown, then the click."""
     button = view.controls.play_button
-    button.shown = shown
+    button.frame_tau = shown
     button.clicks += 1
 
 
