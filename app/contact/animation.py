@@ -19,7 +19,6 @@ from app.contact.player import Player, frame_index, frame_taus, played
 from app.contact.state import ExplorerState
 from app.kit.batch import held
 from app.kit.widgets import finite
-from core import Contact
 
 log = logging.getLogger(__name__)
 
@@ -31,11 +30,10 @@ class Animated(Protocol):
     the controls showing Play/Pause (`app.contact.view.ContactView`)."""
 
     state: ExplorerState
-    shown: Contact
     player: Player
     controls: Any
 
-    def show_state(self) -> None: ...
+    def settle(self) -> None: ...
 
 
 class Animation(param.Parameterized):
@@ -56,7 +54,7 @@ class Animation(param.Parameterized):
     def span(self) -> tuple[float, float]:
         """The times played (rad): the contact on screen, or the whole period
         (`app.contact.player.played`)."""
-        return played(self.view.shown, self.view.state.period)
+        return played(self.view.state.current, self.view.state.period)
 
     def step(self, seconds: float = 1 / 30) -> float:
         """Advance tau as `seconds` of animation at the current speed; wrap at the end.
@@ -90,7 +88,7 @@ class Animation(param.Parameterized):
 
     def clock_tau(self, now: float | None = None) -> float:
         """The tau of the frame the browser's player shows at time `now` (monotonic s)."""
-        return float(frame_taus(self.view.shown, period=self.view.state.period)[
+        return float(frame_taus(self.view.state.current, period=self.view.state.period)[
             frame_index(self.clock_progress(now))])
 
     def landing(self, frame_tau: object) -> float:
@@ -127,7 +125,7 @@ class Animation(param.Parameterized):
         speed = self.view.state.speed
         self.started = (progress, time.monotonic(), speed)
         with held():
-            self.view.player.play(self.view.shown, progress, speed, CONTACT_SECONDS,
+            self.view.player.play(self.view.state.current, progress, speed, CONTACT_SECONDS,
                                   period=self.view.state.period)
 
     def _on_period(self, event: param.parameterized.Event) -> None:
@@ -151,4 +149,4 @@ class Animation(param.Parameterized):
         with held():  # one message: the player stops and the plots settle on its frame
             view.player.stop()
             view.state.tau = self.clock_tau() if self.stop_at is None else self.stop_at
-            view.show_state()  # (if the frame is the tau the play started from)
+            view.settle()  # (if the frame is the tau the play started from)

@@ -30,7 +30,6 @@ from app.kit.a11y import RadioGroup
 from app.kit.sliders import ExactSlider, LabelledSlider
 from app.kit.style import FORMULA_CSS, NOTE_STYLE
 from app.kit.widgets import LabelledCheckbox
-from core import Contact
 
 #: The sliders of the contact's four numbers: (name, label, start, end, step); their
 #: boxes take any value of core's domain, the slider widening to show it.
@@ -65,10 +64,8 @@ DOWNLOADS = ("curves", "traction", "impulse")
 
 
 class ControlledView(Protocol):
-    """What the controls read of the view (`app.contact.view.ContactView`): the contact
-    on screen (the tau box's range) and the CSV files."""
-
-    shown: Contact
+    """What the controls read of the view (`app.contact.view.ContactView`): the CSV
+    files."""
 
     def csv_file(self, key: str) -> io.StringIO: ...
 
@@ -97,7 +94,7 @@ class Controls:
         c = state.contact()
         self.tau_slider = ExactSlider(
             label="τ = ωt (rad): time", value=state.tau, start=c.tau0, end=c.tau_end,
-            step=TAU_STEP, parse=lambda text: parse_tau(text, view.shown, state.period),
+            step=TAU_STEP, parse=lambda text: parse_tau(text, state.current, state.period),
             name="tau")
         self.play_button = PlayButton(width=110)  # (the keyboard stays on it)
         self.step_button = pn.widgets.Button(label="Step", width=100)
@@ -144,7 +141,7 @@ class Controls:
     def show_drive(self, state: ExplorerState) -> None:
         """The sliders of what follows from other inputs disabled (psi with the drive's
         angle or SI inputs, theta with psi or SI inputs, tau0 with SI inputs;
-        `ContactView.show_state` derives them) and the note on mu and nu; nothing when
+        `ExplorerState._follow_inputs` derives them) and the note on mu and nu; nothing when
         they show this state's already (every move of a slider calls this)."""
         shown = (state.physical, state.drive)
         if shown == self._drive_shown:

@@ -23,7 +23,8 @@ from importlib.metadata import PackageNotFoundError, version
 
 import numpy as np
 
-from app.contact.curves import ForceScene, MotionScene, RadiiScene
+from app.contact.curves import ForceScene, MotionScene
+from app.contact.radii import RadiiScene
 from app.contact.traction import TractionScene
 from core import Contact
 

@@ -70,7 +70,7 @@ def lesson_layout(state: ExplorerState):
     values = {k: v for k, v in state.param.values().items() if k != "name"}
     view = ContactView(ExplorerState(**{**values, "playing": False}))
     view.catch_up(view.tabbed)  # (the explorer computes a closed tab when opened)
-    c, tau = view.shown, view.state.tau
+    c, tau = view.state.current, view.state.tau
     view.player.play(c, 0.0, 1.0, CONTACT_SECONDS)  # the frames, from core
     first = int(abs(frame_taus(c) - tau).argmin())
     play = Button(label="▶ Play", button_type="success", width=110)

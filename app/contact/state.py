@@ -229,9 +229,17 @@ class ExplorerState(param.Parameterized):
     h = param.Number(default=1e-6, **bounds("h"), doc="gap at t = 0 (m), |h| < H")
     omega = param.Number(default=2 * math.pi * 40e3, **bounds("omega"), doc="rad/s")
 
+    current = param.ClassSelector(class_=Contact, doc=(
+        "the core.Contact the inputs define, derived by the state itself "
+        "(`_follow_inputs`); the last one core accepted when it refuses the inputs"))
+
     def __init__(self, **params) -> None:
         super().__init__(**params)
         self._last_contact: tuple[tuple, Contact] | None = None
+        try:
+            self.current = self.contact()
+        except ValueError:  # (a scratch state of refused inputs: `current` stays None)
+            pass
 
     def contact(self) -> Contact:
         """The `core.Contact` the current parameters define: from the SI inputs, or from
@@ -264,35 +272,33 @@ class ExplorerState(param.Parameterized):
             fixes["tau"] = min(max(self.tau, c.tau0), c.tau_end)
         return {k: v for k, v in fixes.items() if getattr(self, k) != v}
 
-    def correct(self, c: Contact) -> bool:
-        """Set the `corrections` for contact `c` in one batch of watchers (not with
-        `param.update`, which reads every parameter of the state first); whether there
-        were any."""
-        fixes = self.corrections(c)
-        with param.parameterized.batch_call_watchers(self):
-            for k, v in fixes.items():
-                setattr(self, k, v)
-        return bool(fixes)
-
     @param.depends(*CONTACT_INPUTS, "tau", "period", watch=True)
     def _follow_inputs(self) -> None:
-        """The state corrects itself after any change of the contact's inputs or of tau
-        (a link, a preset, SI inputs, the Motor card's contact): `corrections`.  A
-        combination core refuses is left uncorrected (the view says why).  Its own
-        watcher, registered first, runs before any view's, so that a view is called
-        again with the corrected state."""
+        """The state derives what follows from its inputs after any change of them or of
+        tau (a slider, a link, a preset, SI inputs, the Motor card's contact): its
+        `corrections` and `current`, the contact, set in one batch of watchers (not with
+        `param.update`, which reads every parameter of the state first).  `current`
+        changes only when the contact does (its scales included).  A combination core
+        refuses changes nothing: `current` keeps the last contact core accepted (the
+        physical inputs' card says why, under its boxes)."""
         try:
             c = self.contact()
         except ValueError:
             return
-        self.correct(c)
+        fixes = self.corrections(c)
+        last = self.current
+        with param.parameterized.batch_call_watchers(self):
+            for k, v in fixes.items():
+                setattr(self, k, v)
+            if last is None or (c, c.scales) != (last, last.scales):
+                self.current = c
 
     def set_input(self, name: str, value: object) -> None:
         """Set parameter `name` to `value` and, in the same batch of watchers, what
-        follows from it (`corrections`): each watcher is called once, on the corrected
-        state (a slider's move, one pass of the view; `_follow_inputs` then finds
-        nothing to correct).  ValueError, nothing changed, if the parameter refuses
-        `value`."""
+        follows from it (`_follow_inputs`: the corrections and `current`): each watcher
+        is called once, on the corrected state (a slider's move: each scene draws once;
+        `_follow_inputs` called again then finds nothing to change).  ValueError,
+        nothing changed, if the parameter refuses `value`."""
         if getattr(self, name) == value:
             return  # (a widget following the state: its value is the state's)
         with param.parameterized.batch_call_watchers(self):

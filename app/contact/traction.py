@@ -7,6 +7,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import param
+from bokeh.core.property.validation import validate
 from bokeh.models import (
     Annulus,
     Circle,
@@ -16,7 +18,7 @@ from bokeh.models import (
 )
 
 from app.contact.phases import STICK_COLOR, style
-from app.kit.changes import put, show
+from app.kit.changes import changed, put, show
 from app.kit.figures import (
     DATA_LEVEL,
     FRAME_LEVEL,
@@ -28,6 +30,7 @@ from app.kit.figures import (
     new_figure,
     stamp,
     style_figure,
+    to_draw,
 )
 from core import Contact
 
@@ -134,8 +137,25 @@ class TractionScene(Scene):
         return {"r/a*": r, "tau_u/(mu p*)": profile["traction"], "p/p*": profile["upper"],
                 "stick": ((np.abs(r) <= b) & (b > 0)).astype(float)}
 
+    def follow(self, *events: param.parameterized.Event) -> None:
+        """Draw a change of the state's contact or tau (a watcher: `app.contact.view.
+        connect`; what to draw is `app.kit.figures.to_draw`'s)."""
+        todo = to_draw(self, events)
+        if todo is not None:
+            c, tau, new = todo
+            if new:
+                self.update_contact(c)
+            self.update_tau(c, tau)
+
     def update_tau(self, c: Contact, tau: float) -> None:
-        show(self.source, {k: v[0] for k, v in self.profiles(c, np.array([tau])).items()})
+        """The profile at time tau into the source `traction` (written here, only when a
+        column differs: `app.kit.changes.changed`; Bokeh does not validate the columns),
+        the phase under it."""
+        profile = {k: v[0] for k, v in self.profiles(c, np.array([tau])).items()}
+        new = changed(self.source, profile)
+        if new is not None:
+            with validate(False):
+                self.source.data = new
         look = style(c.phase(tau))
         put(self.phase_label, text_color=look.color, text=look.name)
 
@@ -170,6 +190,15 @@ class DiscScene(Scene):
         put(self.envelope.glyph, radius=a_max)
         put(self.figure.x_range, start=-1.15 * a_max, end=1.15 * a_max)
         put(self.figure.y_range, start=-1.15 * a_max, end=1.15 * a_max)
+
+    def follow(self, *events: param.parameterized.Event) -> None:
+        """Draw a change of the state's contact or tau (`TractionScene.follow`)."""
+        todo = to_draw(self, events)
+        if todo is not None:
+            c, tau, new = todo
+            if new:
+                self.update_contact(c)
+            self.update_tau(c, tau)
 
     def update_tau(self, c: Contact, tau: float) -> None:
         line = c.at(tau)

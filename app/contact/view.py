@@ -4,17 +4,17 @@
 `connect` makes every subscription of the feature, in one place.  The path from a slider
 to a plot (docs/app.md, "How data flows"; `tests/app/test_slider_path.py` traces it):
 
-    SliderModel.value --ExactSlider.take_move, feed--> ExplorerState.set_input (psi, theta)
-      --watch--> ContactView.show_state -> refresh -> TractionScene.update_tau
-      -> app.kit.changes.show -> source.data (core's numbers)
+    SliderModel.value --ExactSlider.take_move, feed--> ExplorerState.set_input (psi and
+      what follows: theta, tau, `current`) --watch--> TractionScene.follow
+      -> update_tau -> source.data (core's numbers)
 
-`show_state` watches every input of the contact and tau: it rebuilds the
-`core.Contact` and refreshes every scene when the contact differs from the one shown,
-refreshes only what depends on tau when only tau differs, and does nothing when both are
-shown; the state corrects itself first (psi and tau0 derived from SI inputs, theta
-from psi, tau clamped into the contact: `ExplorerState._follow_inputs`).  All changes of one
-step reach the browser as one message (`panel.io.hold`).  The curve scenes share one
-card of tabs: only the open tab is computed, the others catch up when opened.
+The state derives its own contact (`ExplorerState.current`) and corrections; each scene
+follows the state's `current` and `tau` by its own watcher (`Scene.follow`: a hidden
+scene computes nothing and catches up when shown), and the view follows them for what
+is its own (`show_state`: the readout, the formulas, the caption, the tau slider, the
+T(tau) family, the animation).  All changes of one step reach the browser as one
+message (`app.kit.batch.held`, entered where a move enters the app).  The curve scenes
+share one card of tabs: only the open tab is computed, the others catch up when opened.
 
 The animation is played by the browser (`app.contact.animation`); the page around this
 view (URL, cards of other features, messages) is `app.page.explorer`'s.
@@ -31,16 +31,17 @@ import param
 from app.contact import export
 from app.contact.animation import Animation
 from app.contact.controls import Controls
-from app.contact.curves import ForceScene, MotionScene, RadiiScene
+from app.contact.curves import ForceScene, MotionScene
 from app.contact.data import caption, captions, readout_rows
 from app.contact.formulas import FORMULAS_TAG, formulas
 from app.contact.impulse import ImpulseScene
 from app.contact.multiples import SmallMultiples
 from app.contact.notes import NOTES
 from app.contact.player import Player, played
+from app.contact.radii import RadiiScene
 from app.contact.readout import Readout
 from app.contact.spheres import SpheresScene
-from app.contact.state import CONTACT_INPUTS, PRESETS, ExplorerState
+from app.contact.state import PRESETS, ExplorerState
 from app.contact.traction import DiscScene, TractionScene
 from app.kit.a11y import expandable_card
 from app.kit.batch import held
@@ -59,14 +60,12 @@ class ContactView(param.Parameterized):
 
     state = param.ClassSelector(class_=ExplorerState, constant=True,
                                 doc="what the user set; every scene shows it")
-    shown = param.ClassSelector(class_=Contact, doc="the core.Contact on screen")
 
     def __init__(self, state: ExplorerState | None = None) -> None:
         state = state or ExplorerState()
-        super().__init__(state=state, shown=state.contact())
-        #: the time the scenes on the server show (the player's frames aside)
-        self._shown_tau = state.tau
-        self._shown_phase = -1
+        super().__init__(state=state)
+        #: the phase whose formulas the card holds (-1: none yet)
+        self._formula_phase = -1
         self.traction, self.disc = TractionScene(), DiscScene()
         self.force, self.impulse = ForceScene(), ImpulseScene()
         self.radii, self.motion = RadiiScene(), MotionScene()
@@ -89,50 +88,64 @@ class ContactView(param.Parameterized):
         self.panes = [pn.pane.Bokeh(sizing_mode="stretch_width") for _ in self.tabbed]
         self.tabs = pn.Tabs(*zip(TAB_TITLES, self.panes, strict=True), dynamic=True,
                             sizing_mode="stretch_width", stylesheets=[TAB_ROW_CSS])
-        self._stale: set[Scene] = set()
+        for scene in self.tabbed[1:]:
+            scene.hidden = True
         self._show_figure(0)
         self._open_preset_tab()  # (a link to Fig. 8 shows Fig. 8)
         self.fig6_card = expandable_card(
             title="Fig. 6 in full: the six traction profiles (ψ = 2.414, τ₀ = π/6)",
             collapsed=True, sizing_mode="stretch_width", margin=6)
         connect(self)
-        self.refresh()
+        self.draw_all()
 
     # ------------------------------------------------------------------ state
 
     def show_state(self, *events: param.parameterized.Event) -> None:
-        """Show the state: refresh every scene if its contact is not the one shown, else
-        what depends on tau if its tau is not the one shown, else nothing.
-
-        The state corrects itself before this is called (`ExplorerState._follow_inputs`:
-        theta or psi by eq 23, psi and tau0 from SI inputs, tau inside the contact).
-        SI inputs that core refuses together, or a drive angle whose psi core refuses,
-        are not shown (the physical inputs' card says why, under its boxes)."""
+        """Show what is the view's of the state's contact (`current`) and tau: after a new
+        contact the T(tau) family, the tau slider's range and the readout; the formulas
+        and the caption at tau; the tau slider's value (a tau set elsewhere: a step, a
+        typed value); while playing, the browser's player (re)started at the state's
+        place instead (the scenes draw nothing then: `app.kit.figures.to_draw`)."""
         s = self.state
-        self.controls.show_drive(s)
-        try:
-            c = s.contact()
-        except ValueError:
-            if s.physical or s.drive == "angle":
-                return
-            raise
-        if (c, c.scales) != (self.shown, self.shown.scales):
-            self.shown = c
-            self.refresh()
-        elif s.tau != self._shown_tau:
-            if s.playing:  # the scrubber moved while playing: play on from there
-                self.animation.start(self.animation.progress_of(s.tau))
-            else:
-                self.update_tau()
+        c, tau = s.current, s.tau
+        new = any(e.name == "current" for e in events)
+        with held():
+            if new:
+                self._show_family()
+                self.controls.tau_slider.set_range(*played(c, s.period), tau)
+                self.readout.show(readout_rows(c))
+            if s.playing:
+                self.animation.start(self.animation.clock_progress() if new
+                                     else self.animation.progress_of(tau))
+                if not new:
+                    return
+            self._show_time(c, tau)
 
-    def is_shown(self, scene: Scene) -> bool:
-        """Whether `scene` is on the page now (the curve scenes: their tab is open)."""
-        return scene not in self.tabbed or self.tabbed[self.tabs.active] is scene
+    def _show_time(self, c: Contact, tau: float) -> None:
+        """The formulas, the caption and the tau slider at time `tau` of contact `c`."""
+        self._show_formulas(c, tau)
+        self.traction.caption.text = caption(c, tau)
+        self.controls.tau_slider.value = tau  # (nothing when it holds tau: its own move)
+
+    def settle(self) -> None:
+        """After a pause: each scene shown draws the state's tau if it drew another
+        (while playing, the browser played the frames and the scrubber moved tau
+        without them), and the view's texts follow."""
+        s = self.state
+        with held():
+            for scene in self.scenes:
+                if not scene.hidden and scene.drawn_tau != s.tau:
+                    scene.update_tau(s.current, s.tau)
+                    scene.drawn_tau = s.tau
+            self._show_time(s.current, s.tau)
 
     def show_tab(self, event: param.parameterized.Event) -> None:
-        """Tab `event.new` opened: its scene caught up and its figure in its pane."""
+        """Tab `event.new` opened: the other tabs' scenes hidden, its scene caught up
+        and its figure in its pane."""
         if event.new not in range(len(self.tabbed)):  # (from a script: no such tab)
             return
+        for i, scene in enumerate(self.tabbed):
+            scene.hidden = i != event.new
         with held():
             self.catch_up([self.tabbed[event.new]])
             self._show_figure(event.new)
@@ -144,55 +157,39 @@ class ContactView(param.Parameterized):
             self.panes[tab].object = figure
 
     def catch_up(self, scenes: list[Scene]) -> None:
-        """Bring those of `scenes` that missed changes while hidden up to date."""
-        c, tau = self.shown, self.state.tau
+        """Draw those of `scenes` that missed changes while hidden (`Scene.stale`)."""
         with held():
             for scene in scenes:
-                if scene in self._stale:
-                    self._stale.discard(scene)
-                    scene.update_contact(c)
-                    scene.update_tau(c, tau)
+                if scene.stale:
+                    self._draw(scene)
 
-    def refresh(self) -> None:
-        """Recompute every scene shown for the current state (after a parameter change);
-        the others are marked to catch up when shown."""
-        c = self.shown
-        tau = self._shown_tau = self.state.tau
+    def _draw(self, scene: Scene) -> None:
+        """Draw `scene` in full for the state's contact and tau."""
+        s = self.state
+        scene.stale = False
+        scene.update_contact(s.current)
+        scene.update_tau(s.current, s.tau)
+        scene.drawn_tau = s.tau
+
+    def draw_all(self) -> None:
+        """Draw every scene shown and what is the view's (the others are marked to catch
+        up when shown): a new view."""
         with held():
             for scene in self.scenes:
-                if self.is_shown(scene):
-                    scene.update_contact(c)
-                    scene.update_tau(c, tau)
+                if scene.hidden:
+                    scene.stale = True
                 else:
-                    self._stale.add(scene)
+                    self._draw(scene)
+            c = self.state.current
             self._show_family()
-            self.controls.tau_slider.set_range(*played(c, self.state.period), tau)
+            self.controls.tau_slider.set_range(*played(c, self.state.period), self.state.tau)
             self.readout.show(readout_rows(c))
-            self._show_formulas(c, tau)
-            self.traction.caption.text = caption(c, tau)
-            if self.state.playing:  # the player goes on, at its place in the contact
-                self.animation.start(self.animation.clock_progress())
-
-    def update_tau(self) -> None:
-        """Refresh what depends on tau only (a scrub, a step, the frame a pause lands on)."""
-        c = self.shown
-        tau = self._shown_tau = self.state.tau
-        with held():
-            for scene in self.scenes:
-                if scene in self._stale:
-                    continue  # caught up in full when shown
-                if self.is_shown(scene):
-                    scene.update_tau(c, tau)
-                else:
-                    self._stale.add(scene)
-            self._show_formulas(c, tau)
-            self.traction.caption.text = caption(c, tau)
-            self.controls.tau_slider.value = tau  # (its watcher finds the state's tau)
+            self._show_time(c, self.state.tau)
 
     def _show_formulas(self, c: Contact, tau: float) -> None:
         phase = int(c.phase(tau))  # a 0-d array for one tau
-        if phase != self._shown_phase:
-            self._shown_phase = phase
+        if phase != self._formula_phase:
+            self._formula_phase = phase
             self._formulas.write(formulas(phase))
 
     # ---------------------------------------------------------------- presets
@@ -212,7 +209,7 @@ class ContactView(param.Parameterized):
 
     def _show_family(self) -> None:
         """Overlay the T(tau) curves of the preset's psi family (Fig. 7), or none."""
-        c = self.shown
+        c = self.state.current
         preset = PRESETS.get(self.state.preset)
         family = preset.family if preset else ()
         self.force.set_family([Contact(p, c.tau0, mu=c.mu, nu=c.nu) for p in family])
@@ -220,8 +217,8 @@ class ContactView(param.Parameterized):
     def show_log(self, *events: param.parameterized.Event) -> None:
         """The impulse curve on the log psi axis, or not (the state's `log_psi`)."""
         self.impulse.set_log(self.state.log_psi)
-        self._stale.add(self.impulse)
-        if self.is_shown(self.impulse):
+        self.impulse.stale = True
+        if not self.impulse.hidden:
             with held():
                 self.catch_up([self.impulse])
                 self._show_figure(self.tabbed.index(self.impulse))
@@ -239,7 +236,7 @@ class ContactView(param.Parameterized):
         tau grid), 'traction' (the profile at time tau, rad: by default the state's) or
         'impulse' (the impulse curve), after comment lines naming the parameters."""
         self.catch_up(self.tabbed)  # a hidden tab's data too, as it is now
-        c = self.shown
+        c = self.state.current
         tau = self.state.tau if tau is None else tau
         if key == "curves":
             table = export.curves_table(self.force, self.radii, self.motion, c)
@@ -255,7 +252,7 @@ class ContactView(param.Parameterized):
         """The CSV file's name, after the parameters it holds and, for 'traction', the
         time tau (rad; by default the state's)."""
         tau = self.state.tau if tau is None else tau
-        return export.file_name(key, self.shown, tau if key == "traction" else None)
+        return export.file_name(key, self.state.current, tau if key == "traction" else None)
 
     def csv_file(self, key: str) -> io.StringIO:
         """The CSV as a file object, for `pn.widgets.FileDownload` (called on a click).
@@ -280,18 +277,24 @@ def connect(view: ContactView) -> None:
     """Every subscription of the contact feature, in the order they run for a change.
 
     A value the user sets goes to the state (the widgets' own feeds and watchers); the
-    state corrects itself first (its own watchers, registered when it was made:
-    `ExplorerState._follow_inputs`, `_leave_preset`, `_leave_material`); then the view
-    shows it (`show_state` and the others below); then the widgets show the state's
-    values (a slider's own move comes back as the value it holds: nothing is sent).
-    The path of a slider move is docs/app.md's "How data flows"."""
+    state derives what follows from it first (its own watchers, registered when it was
+    made: `ExplorerState._follow_inputs`, which sets its contact `current` and its
+    corrections, `_leave_preset`, `_leave_material`); then each scene draws the state's
+    contact and tau (its own `follow`), and the view shows what is its own; then the
+    widgets show the state's values (a slider's own move comes back as the value it
+    holds: nothing is sent).  The path of a slider move is docs/app.md's "How data
+    flows"."""
     s, ui = view.state, view.controls
-    # the state on screen
-    s.param.watch(view.show_state, [*CONTACT_INPUTS, "tau"])
+    # the state's contact and time drawn by each scene (a hidden one computes nothing)
+    for scene in view.scenes:
+        s.param.watch(scene.follow, ["current", "tau"])
+    # the view's own: readout, formulas, caption, tau slider, T(tau) family, animation
+    s.param.watch(view.show_state, ["current", "tau"])
     s.param.watch(view.show_preset, "preset")
     s.param.watch(view.show_log, "log_psi")
-    s.param.watch(lambda e: ui.tau_slider.set_range(*played(view.shown, e.new), s.tau),
+    s.param.watch(lambda e: ui.tau_slider.set_range(*played(s.current, e.new), s.tau),
                   "period")
+    s.param.watch(lambda _: ui.show_drive(s), ["physical", "drive"])
     # the user's values into the state (`ExplorerState.set_input`: the value and what
     # follows from it in one batch; a value the state refuses changes nothing)
     for name, slider in ui.sliders().items():

@@ -3,7 +3,8 @@
 Bokeh sends every ``source.data = ...`` to the browser, equal or not, and validates
 every value it is given before comparing it with the one held: a psi move that set each
 source and label afresh sent data the browser held already and paid for the checks.
-`show` gives a source data only when a column differs in value from what it holds;
+`changed` says what to give a source, only when a column differs in value from what it
+holds (`show` gives it);
 `put` sets only the properties that differ.
 """
 
@@ -19,14 +20,24 @@ from bokeh.models import ColumnDataSource
 from app.kit.wire import inline
 
 
-def show(source: ColumnDataSource, data: dict[str, Any]) -> None:
-    """Give `source` this data, its numeric arrays sent inline (`app.kit.wire.inline`),
-    unless it holds it already (nothing is sent then): every column the same (`same`).
-    Bokeh does not validate the columns (`validate(False)`, local to this call): they
-    are arrays and lists of text that the scenes make, and Bokeh's check of every
-    column was ~a third of a psi move's source updates."""
+def changed(source: ColumnDataSource, data: dict[str, Any]) -> dict[str, Any] | None:
+    """What to give `source` for it to hold `data`: the data, its numeric arrays sent
+    inline (`app.kit.wire.inline`), or None when the source holds it already (every
+    column the same: `same`), since Bokeh would send it even if equal.  Pure: the scene
+    writes it (``source.data = new``, inside ``validate(False)``: `show`)."""
     new, held = inline(data), source.data
     if new.keys() != held.keys() or not all(same(held[k], v) for k, v in new.items()):
+        return new
+    return None
+
+
+def show(source: ColumnDataSource, data: dict[str, Any]) -> None:
+    """Give `source` this data unless it holds it already (`changed`).  Bokeh does not
+    validate the columns (`validate(False)`, local to this call): they are arrays and
+    lists of text that the scenes make, and Bokeh's check of every column was ~a third
+    of a psi move's source updates."""
+    new = changed(source, data)
+    if new is not None:
         with validate(False):
             source.data = new
 

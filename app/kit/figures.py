@@ -340,11 +340,22 @@ def png_name(title: str) -> str:
 
 
 class Scene:
-    """Base: a figure, its named source, and the two update hooks."""
+    """Base: a figure, its named source, and the two update hooks.
+
+    A scene follows a state's contact (`current`) and time (`tau`) by its own
+    `follow`, a watcher the feature subscribes (`app.contact.view.connect`); what to
+    draw after a change is `to_draw`'s."""
 
     name: str = ""
     #: the tau0 (`float.hex`) of what the scene drew that depends on tau0 alone
     _drawn_tau0: str | None = None
+
+    #: not on the page (a closed tab): it computes nothing and is `stale`
+    hidden: bool = False
+    #: it missed a change while hidden: drawn in full when shown again
+    stale: bool = False
+    #: the tau it last drew (None: nothing yet)
+    drawn_tau: float | None = None
 
     def __init__(self, data: dict) -> None:
         self.source = ColumnDataSource(data=data, name=self.name)
@@ -368,3 +379,22 @@ class Scene:
     def table(self) -> dict[str, np.ndarray]:
         """The data shown, for the CSV download."""
         return {k: np.asarray(v) for k, v in self.source.data.items()}
+
+
+def to_draw(scene: Scene, events: tuple) -> tuple[Contact, float, bool] | None:
+    """What `scene` draws after `events`, changes of a state's `current` and `tau`
+    (`app.contact.state.ExplorerState`): (the contact, tau, whether to draw what depends
+    on the contact too), or None: nothing, when the scene is hidden (it is then marked
+    `stale`) or when only tau moved while the browser plays the frames (the scene draws
+    the tau the pause lands on: `app.contact.animation`).  The tau returned is noted as
+    the scene's `drawn_tau`."""
+    state = events[0].obj
+    new = scene.stale or any(e.name == "current" for e in events)
+    if scene.hidden:
+        scene.stale = True
+        return None
+    if state.playing and not new:
+        return None
+    scene.stale = False
+    scene.drawn_tau = state.tau
+    return state.current, state.tau, new

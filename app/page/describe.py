@@ -86,11 +86,10 @@ class Describer:
             for key in PLOT_NAMES}
         #: the polite live region announcing a change of phase
         self.announcer = LiveText(name="phase_announcement")
-        self._announced = int(contact.shown.phase(state.tau))
+        self._announced = int(state.current.phase(state.tau))
         self.describe()
-        contact.param.watch(lambda *_: self.describe(), "shown")
         contact.tabs.param.watch(lambda *_: self.describe(), "active")
-        state.param.watch(lambda *_: self.describe(), ["tau", "playing"])
+        state.param.watch(lambda *_: self.describe(), ["current", "tau", "playing"])
 
     def describe(self) -> None:
         """Write each plot's description, and announce a new phase, for the contact and
@@ -98,7 +97,7 @@ class Describer:
         server learns the time at the pause): the pause writes them once."""
         if self.state.playing:
             return
-        c = self.contact.shown
+        c = self.state.current
         tau = min(max(self.state.tau, c.tau0), c.tau_end)  # (before the state's clamp)
         tab = self.contact.tabs.active
         if tab not in range(len(TAB_TITLES)):

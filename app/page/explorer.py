@@ -68,8 +68,8 @@ class Explorer(param.Parameterized):
         self.contact = ContactView(self.state)
         self.methods = MethodsScene()
         self.dem = DemCard()  # (a contact of its own: the DEM test cases)
-        self.bem = BemCard(self.contact.shown, self.state.tau)  # (built when first opened)
-        self.methods.update_contact(self.contact.shown)
+        self.bem = BemCard(self.state.current, self.state.tau)  # (built when first opened)
+        self.methods.update_contact(self.state.current)
         self.motor: MotorScene | None = None  # built when its card is first opened
         self.follow_motor = LabelledCheckbox(
             label="Show the rotor's contact (at x₀) in the plots above", value=False)
@@ -94,11 +94,11 @@ class Explorer(param.Parameterized):
         `app.contact.view.connect`; the Motor card's are made when it is built,
         `_on_motor_card`; the plots' descriptions follow the contact in
         `app.page.describe.Describer`)."""
-        c, s = self.contact, self.state
-        # the other features follow the contact on screen
-        c.param.watch(lambda e: self.bem.update(e.new, s.tau), "shown")
-        s.param.watch(lambda e: self.bem.update(c.shown, e.new), "tau")
-        c.param.watch(lambda e: self.methods.update_contact(e.new), "shown")
+        s = self.state
+        # the other features follow the state's contact
+        s.param.watch(lambda e: self.bem.update(e.new, s.tau), "current")
+        s.param.watch(lambda e: self.bem.update(s.current, e.new), "tau")
+        s.param.watch(lambda e: self.methods.update_contact(e.new), "current")
         # the Motor card: built when first opened; its rotor's contact shown when asked
         self.motor_card.param.watch(self._on_motor_card, "collapsed")
         self.follow_motor.param.watch(self._on_follow, "value")

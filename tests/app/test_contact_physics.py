@@ -99,7 +99,7 @@ def test_a_slider_move_and_what_follows_from_it_are_one_batch() -> None:
         ["psi", "theta", "tau", "tau0"])
     ex.contact.controls.psi_slider.value = 3.0
     assert seen == [(("psi", "theta"), 3.0, drive_angle(3.0, s.mu, s.nu), s.tau)]
-    assert s.contact() is ex.contact.shown  # (the state keeps the contact it made)
+    assert s.contact() is ex.state.current  # (the state keeps the contact it made)
     seen.clear()
     s.tau = 2.5
     seen.clear()

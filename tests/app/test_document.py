@@ -21,12 +21,12 @@ import app.kit.widgets
 import app.page.explorer
 from app.contact import data, spheres
 from app.contact.animation import CONTACT_SECONDS
-from app.contact.curves import RadiiScene
 from app.contact.formulas import formulas
 from app.contact.notes import NOTES
 from app.contact.phases import STYLES
 from app.contact.player import frame_index, frame_taus
 from app.contact.query import parse_query
+from app.contact.radii import RadiiScene
 from app.contact.state import DEFAULT_PRESET, PRESETS, SQRT2_1, ExplorerState
 from app.contact.traction import PROFILE_COLUMNS, TractionScene
 from app.kit.figures import CURVE_POINTS, PROFILE_POINTS, fit_range, nice_step
@@ -53,7 +53,7 @@ def assert_sources_match_core(ex: Explorer) -> None:
     for i in range(len(ex.contact.tabbed)):
         ex.contact.tabs.active = i
     ex.contact.tabs.active = active
-    assert not ex.contact._stale  # every tab was opened: all caught up
+    assert not any(s.stale for s in ex.contact.scenes)  # every tab was opened: all caught up
     c, tau = contact_of(ex), ex.state.tau
     grid = c.tau_grid(CURVE_POINTS)
 
@@ -275,7 +275,7 @@ def test_what_depends_on_tau0_alone_follows_tau0(ex: Explorer) -> None:
     for psi, tau0 in [(0.8, 0.5), (3.0, 0.5), (3.0, -0.3), (0.5, -0.3), (0.5, 0.0),
                       (2.0, 0.0), (2.0, 1.2), (0.9, 1.2)]:
         ex.state.param.update(psi=psi, tau0=tau0)
-        c = ex.contact.shown
+        c = ex.state.current
         assert (c.psi, c.tau0) == (psi, tau0)
         new = {"spheres": spheres.SpheresScene(), "traction": TractionScene(),
                "radii": RadiiScene()}
@@ -505,7 +505,7 @@ def test_reset_restores_defaults(ex: Explorer) -> None:
     assert not ex.state.physical and ex.state.material == "custom"
     assert all(getattr(ex.state, k) == ExplorerState.param[k].default
                for k in ("R", "G", "H", "u0", "h", "omega"))
-    assert ex.contact.shown.scales is None and ex.state.mu == 0.2 and ex.state.nu == 0.3
+    assert ex.state.current.scales is None and ex.state.mu == 0.2 and ex.state.nu == 0.3
     assert_sources_match_core(ex)
 
 
@@ -736,8 +736,8 @@ def test_the_player_writes_the_pages_tau_box_slider_and_formulas() -> None:
     ex.state.playing = True
     args = ex.contact.player.script.args
     assert args["entry"].value == ex.contact.controls.tau_slider.text(ex.state.tau)
-    assert args["slider"].value == ex.state.tau and args["slider"].end == ex.contact.shown.tau_end
-    assert args["formula"].text == formulas(int(ex.contact.shown.phase(ex.state.tau)))
+    assert args["slider"].value == ex.state.tau and args["slider"].end == ex.state.current.tau_end
+    assert args["formula"].text == formulas(int(ex.state.current.phase(ex.state.tau)))
     assert args["formulas"] == [formulas(p) for p in Phase]
     assert {args[k].document for k in ("entry", "slider", "formula")} == {doc}
 
@@ -793,7 +793,7 @@ def test_the_formula_card_follows_the_phase_in_its_page() -> None:
             events.clear()
             with hold(doc):
                 ex.state.param.update(psi=psi, tau=tau)
-            phase = int(ex.contact.shown.phase(tau))
+            phase = int(ex.state.current.phase(tau))
             assert model.text == ex.contact.controls.formulas.object == formulas(phase)
             assert set(doc.models) == models
             written = [e.attr for e in events
@@ -822,25 +822,27 @@ def test_physical_inputs_give_si_scales(ex: Explorer) -> None:
 
 
 def test_each_change_is_shown_once_corrections_included(ex: Explorer, monkeypatch) -> None:
-    """`show_state` corrects the state (tau clamped, psi and tau0 from SI inputs) and
-    shows the result once: one refresh per contact change, one tau update per tau
-    change, nothing for a value already shown."""
-    calls = {"refresh": 0, "update_tau": 0}
+    """The state corrects itself (tau clamped, psi and tau0 from SI inputs) and a scene
+    draws the result once: what depends on the contact once per contact change, the
+    time once per change (of tau or of the contact), nothing for a value already
+    shown."""
+    calls = {"update_contact": 0, "update_tau": 0}
+    scene = ex.contact.traction
 
     def counting(name: str):
-        method = getattr(ex.contact, name)
+        method = getattr(scene, name)
 
-        def counted() -> None:
+        def counted(*args) -> None:
             calls[name] += 1
-            method()
+            method(*args)
         return counted
 
     for name in calls:
-        monkeypatch.setattr(ex.contact, name, counting(name))
+        monkeypatch.setattr(scene, name, counting(name))
 
-    def shown(refresh: int, update_tau: int) -> None:
-        assert calls == {"refresh": refresh, "update_tau": update_tau}
-        calls.update(refresh=0, update_tau=0)
+    def shown(update_contact: int, update_tau: int) -> None:
+        assert calls == {"update_contact": update_contact, "update_tau": update_tau}
+        calls.update(update_contact=0, update_tau=0)
         assert_sources_match_core(ex)
         assert ex.contact.controls.tau_slider.value == ex.state.tau
 
@@ -850,18 +852,18 @@ def test_each_change_is_shown_once_corrections_included(ex: Explorer, monkeypatc
     shown(0, 0)
     ex.contact.controls.tau0_slider.value = 1.0  # tau = 2.5 is past the end of contact pi - 1
     assert ex.state.tau == math.pi - 1.0
-    shown(1, 0)
+    shown(1, 1)
     ex.contact.controls.physical_box.value = True  # psi and tau0 follow from the SI inputs
     c = Contact.from_physical(**{k: getattr(ex.state, k) for k in (
         "R", "G", "nu", "mu", "H", "u0", "h", "omega")})
     assert (ex.state.psi, ex.state.tau0, ex.state.tau) == (c.psi, c.tau0, math.pi - 1.0)
-    shown(1, 0)
+    shown(1, 1)
     ex.state.R *= 2  # the same psi and tau0, other SI scales (a*, T0)
-    assert ex.contact.shown.scales.a_star == pytest.approx(c.scales.a_star * math.sqrt(2))
-    shown(1, 0)
+    assert ex.state.current.scales.a_star == pytest.approx(c.scales.a_star * math.sqrt(2))
+    shown(1, 1)
     ex.state.H = 4e-6  # psi and tau0 change with H; tau clamps into the new contact
     assert ex.state.tau0 == pytest.approx(math.asin(0.25)) and ex.state.tau == math.pi - 1.0
-    shown(1, 0)
+    shown(1, 1)
 
 
 def test_invalid_physical_inputs_show_a_message(ex: Explorer) -> None:
@@ -871,7 +873,7 @@ def test_invalid_physical_inputs_show_a_message(ex: Explorer) -> None:
     # said once, under the boxes, not above the plots
     pane = ex.contact.controls.physical_inputs.refusal
     assert pane.visible and "(-H, H)" in pane.object and not ex.message.visible
-    assert ex.state.psi == psi and ex.contact.shown == contact_of(ex)
+    assert ex.state.psi == psi and ex.state.current == contact_of(ex)
 
 
 # ------------------------------------------------------------------- motor

@@ -91,7 +91,7 @@ def test_typed_values_reach_the_contact_in_si(ex: Explorer) -> None:
     expected = Contact.from_physical(R=0.005, G=26e9, nu=ex.state.nu, mu=ex.state.mu,
                                      H=2.5e-6, u0=1.2e-6, h=-0.5e-6,
                                      omega=2 * math.pi * 30e3)
-    assert ex.contact.shown.scales == expected.scales
+    assert ex.state.current.scales == expected.scales
     assert (ex.state.psi, ex.state.tau0) == (expected.psi, expected.tau0)
     assert {k: b.value for k, b in boxes.items()} == {
         "R": "5", "G": "26", "H": "2.5", "u0": "1.2", "h": "-0.5", "omega": "30"}
@@ -109,7 +109,7 @@ def test_a_typed_decimal_is_kept_as_typed(ex: Explorer) -> None:
         assert ex.state.H == H and box.value == typed
     assert 2.3e-6 / 1e-6 != 2.3 and box_text(FIELDS["H"], 2.3e-6) == "2.3"
     assert ex.state.psi == pytest.approx(psi * 2.0 / 2.3, rel=1e-14)  # psi ~ u0 / H
-    assert ex.contact.shown.psi == physical_contact(ex).psi
+    assert ex.state.current.psi == physical_contact(ex).psi
     box.value = "2.30"  # the same value: nothing changes, the box shows its text
     assert ex.state.H == 2.3e-6 and note(ex, "H") == ""
     assert box.value in ("2.30", "2.3")  # (set back once the browser's entry is handled)
@@ -179,7 +179,7 @@ def test_inputs_core_refuses_together_show_core_words_under_the_boxes(ex: Explor
     assert ex.state.psi == psi and not ex.message.visible  # said once, here
     assert warning(FIELDS["h"], ex.state.h) == note(ex, "h") == ""  # 3 µm is sensible
     ex.contact.controls.physical_inputs.boxes["H"].value = "4"
-    assert not pane.visible and ex.contact.shown.scales == physical_contact(ex).scales
+    assert not pane.visible and ex.state.current.scales == physical_contact(ex).scales
 
 
 # -------------------------------------------------------------------- material
@@ -194,7 +194,7 @@ def test_a_material_switches_the_physical_inputs_on(ex: Explorer) -> None:
     assert s.physical and ex.contact.controls.physical_box.value
     assert (s.G, s.nu, s.mu) == (m.G, m.nu, DRY_MU["glass"]) == (28.7e9, 0.22, 0.3)
     assert float(ex.contact.controls.physical_inputs.boxes["G"].value) == m.G / 1e9
-    assert ex.contact.shown.scales == physical_contact(ex).scales
+    assert ex.state.current.scales == physical_contact(ex).scales
     assert ex.contact.controls.psi_slider.disabled and ex.state.query()["material"] == "glass"
     ex.contact.controls.mu_slider.value = 0.25  # another mu: no longer glass
     assert s.material == "custom" == ex.contact.controls.material_select.value
@@ -221,7 +221,7 @@ def test_a_link_restores_the_physical_inputs(ex: Explorer) -> None:
     assert not shared.message.visible and shared.state.query() == q
     expected = Contact.from_physical(R=0.005, G=79.3e9, nu=0.29, mu=0.2, H=2.5e-6,
                                      u0=1.2e-6, h=-0.5e-6, omega=2 * math.pi * 30e3)
-    assert shared.contact.shown.scales == ex.contact.shown.scales == expected.scales
+    assert shared.state.current.scales == ex.state.current.scales == expected.scales
     assert (shared.state.psi, shared.state.tau0) == (expected.psi, expected.tau0)
     assert box_values(shared) == box_values(ex)
     ui = shared.contact.controls

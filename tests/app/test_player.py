@@ -26,7 +26,7 @@ def playing(monkeypatch) -> tuple[ContactView, list[float]]:
     view = ContactView()
     now = [100.0]
     monkeypatch.setattr(app.contact.animation.time, "monotonic", lambda: now[0])
-    view.state.tau = view.shown.tau0
+    view.state.tau = view.state.current.tau0
     press(view, None)
     assert view.state.playing and view.controls.play_button.label == PAUSE_LABEL
     now[0] += 1.53  # the server's clock: 91.8 frames into the contact
@@ -35,7 +35,7 @@ def playing(monkeypatch) -> tuple[ContactView, list[float]]:
 
 def test_a_pause_lands_on_the_frame_the_browser_showed(playing) -> None:
     view, _ = playing
-    taus = frame_taus(view.shown)
+    taus = frame_taus(view.state.current)
     shown = float(taus[57])  # (behind the server's clock: frame 91)
     press(view, shown)
     assert not view.state.playing and view.controls.play_button.label == PLAY_LABEL
@@ -50,7 +50,7 @@ def test_a_report_no_page_sends_falls_back_on_the_clock(playing, shown) -> None:
     """Not a finite number within the contact (tau0 = pi/6 to 5 pi/6): refused, and the
     pause lands on the frame of the server's clock."""
     view, now = playing
-    clock = float(frame_taus(view.shown)[frame_index(1.53 / 4.0)])
+    clock = float(frame_taus(view.state.current)[frame_index(1.53 / 4.0)])
     assert view.animation.clock_tau(now[0]) == clock
     press(view, shown)
     assert not view.state.playing and view.state.tau == clock
@@ -58,7 +58,7 @@ def test_a_report_no_page_sends_falls_back_on_the_clock(playing, shown) -> None:
 
 def test_the_ends_of_the_contact_are_frames(playing) -> None:
     view, _ = playing
-    c = view.shown
+    c = view.state.current
     press(view, c.tau_end)
     assert view.state.tau == c.tau_end
     press(view, None)  # plays again: the report of a press that plays is not used
@@ -76,7 +76,7 @@ def test_the_whole_period_plays_the_spheres_apart_and_the_contact_in_cores_phase
     from app.contact.state import ExplorerState
 
     view = ContactView(ExplorerState(period=True))
-    c = view.shown
+    c = view.state.current
     taus = frame_taus(c, period=True)
     assert taus[0] == -math.pi / 2 and taus[-1] == 3 * math.pi / 2
     assert taus.size == frame_taus(c).size
