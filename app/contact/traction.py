@@ -161,9 +161,14 @@ class TractionScene(Scene):
 
 
 class DiscScene(Scene):
-    """Top view of the contact disc: stick disc and slip annulus coloured by phase."""
+    """Top view of the contact disc: stick disc and slip annulus coloured by phase.
+
+    The plot's ranges reach `RIM` times the largest contact radius around it and, below
+    it, a band `BAND` times that radius high for the stamp (the corners outside the
+    circle are smaller than the stamp's three lines)."""
 
     name = "disc"
+    RIM, BAND = 1.15, 0.45
 
     def __init__(self) -> None:
         super().__init__({"x": [0.0, 0.0], "y": [0.0, 0.0], "inner": [0.0, 0.0],
@@ -171,25 +176,25 @@ class DiscScene(Scene):
                           "label": ["stick", "slip"]})
         # no legend: a legend built from the data would repaint the whole plot per frame
         fig = new_figure("Contact disc (top view)", "x / a*", "y / a*", match_aspect=True,
-                         sizing_mode="fixed", width=350, height=350)
+                         sizing_mode="fixed", width=350, height=400)
         self.envelope = draw(fig, Circle, x=0, y=0, radius=1.0, fill_alpha=0,
                              line_dash="dotted", line_color="grey", line_width=2)
         draw(fig, Annulus, self.source, x="x", y="y", inner_radius="inner",
              outer_radius="outer", fill_color="color", line_color="black", line_width=1,
              level=DATA_LEVEL)
-        fig.x_range.start, fig.x_range.end = -1.15, 1.15
-        fig.y_range.start, fig.y_range.end = -1.15, 1.15
-        stamp(fig, sep="\n")
+        fig.x_range.start, fig.x_range.end = -self.RIM, self.RIM
+        fig.y_range.start, fig.y_range.end = -self.RIM - self.BAND, self.RIM
+        stamp(fig, sep="\n")  # (in the band, bottom left)
         style_figure(fig)
         self.figure = fig
 
     def update_contact(self, c: Contact) -> None:
         """The envelope (the largest contact, a/a* at pi/2, eq 7) and the ranges around
-        it."""
+        it, the stamp's band below."""
         a_max = float(c.contact_radius(math.pi / 2))
         put(self.envelope.glyph, radius=a_max)
-        put(self.figure.x_range, start=-1.15 * a_max, end=1.15 * a_max)
-        put(self.figure.y_range, start=-1.15 * a_max, end=1.15 * a_max)
+        put(self.figure.x_range, start=-self.RIM * a_max, end=self.RIM * a_max)
+        put(self.figure.y_range, start=-(self.RIM + self.BAND) * a_max, end=self.RIM * a_max)
 
     def follow(self, *events: param.parameterized.Event) -> None:
         """Draw a change of the state's contact or tau (`TractionScene.follow`)."""

@@ -1,7 +1,8 @@
 """The plots' psi/tau0/tau stamps cover no data (issue 39), in Debian's Chromium: on the
 full page at 1920x1080 and 1280x720, T(tau)'s stamp stands in the corner where the
-Coulomb bound closes towards pi - tau0 and Fig. 8's where the impulse ratio has fallen
-from its peak (it covered Fig. 7's rising curves and Fig. 8's point "3").  Measured on
+Coulomb bound closes towards pi - tau0, Fig. 8's where the impulse ratio has fallen
+from its peak (it covered Fig. 7's rising curves and Fig. 8's point "3") and the disc's in
+a band below the circle of the largest contact (it crossed that circle).  Measured on
 BokehJS's own text boxes and data points (`present_texts`)."""
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from app.contact.state import PRESETS
 pytestmark = pytest.mark.browser
 
 FORCE, IMPULSE = "Tangential force T / T₀", "Tangential impulse T_imp / (μ P_imp)"
+DISC = "Contact disc (top view)"
 
 
 def plots_titled(page, title: str) -> list[dict]:
@@ -33,6 +35,7 @@ def test_the_curve_stamps_cover_no_data(browser, url, screen) -> None:
     page, console = open_explorer(browser, url, *screen)
     page.get_by_role("tab", name="T(τ) (Fig. 7)").scroll_into_view_if_needed()
     assert stamp_over_data(plots_titled(page, FORCE)) == []
+    assert stamp_over_data(plots_titled(page, DISC)) == []  # (in its band, under a*'s circle)
     for preset in ("fig8", "fig7b"):  # Fig. 8's six points; Fig. 7's family of curves
         page.locator("select").first.select_option(label=PRESETS[preset].label)
         title = IMPULSE if preset == "fig8" else FORCE
