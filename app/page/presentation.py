@@ -36,7 +36,7 @@ from bokeh.models import CustomJS
 
 from app.contact.view import ContactView
 from app.kit.a11y import Landmark
-from app.page import layout
+from app.page import keyboard, layout
 from app.page.present_css import (
     CONTROLS_CSS,
     HEADER_CSS,
@@ -162,7 +162,7 @@ def controls(contact: ContactView) -> Landmark:
                    css_classes=["pp-buttons"]),
         pn.Column(ui.speed_slider, css_classes=["pp-speed"]),
         pn.Column(ui.tau_slider, css_classes=["pp-tau"]),
-        layout.play_key(contact),
+        keyboard.play_key(contact),
         align_items="flex-end", sizing_mode="stretch_width", stylesheets=[CONTROLS_CSS])
     return Landmark(object=box, role="complementary", label="Controls",
                     css_classes=["pp-controls"], margin=0)

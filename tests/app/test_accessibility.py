@@ -19,7 +19,7 @@ from app.contact.state import ExplorerState
 from app.contact.view import TAB_TITLES
 from app.kit.style import FOCUS_COLOR
 from app.page.describe import PLOT_NAMES, announcement, descriptions
-from app.page.layout import KEY_NAMES, KEYS, PLAY_KEY
+from app.page.keyboard import KEY_NAMES, KEYS, PLAY_KEY
 from core import Contact
 
 pytestmark = pytest.mark.browser
