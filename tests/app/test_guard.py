@@ -496,7 +496,7 @@ def test_past_its_page_loads_a_client_gets_the_busy_page_and_no_session(served, 
     body = refused.value.read().decode()
     assert "Too many pages were opened from your network" in body
     assert f"content='{after}; url=/main?psi=2&amp;tau0=0.4'" in body  # (the visitor's link)
-    assert {s.id for s in server.get_sessions("/main")} <= before  # (none made; older ones may expire)
+    assert {s.id for s in server.get_sessions("/main")} <= before  # (none made; old ones go)
 
 
 @pytest.mark.parametrize("uri, expected", [
