@@ -10,7 +10,6 @@ from functools import cached_property
 from typing import ClassVar
 
 import numpy as np
-import param
 from bokeh.layouts import column
 from bokeh.models import (
     CDSView,
@@ -39,7 +38,6 @@ from app.kit.figures import (
     new_figure,
     stamp,
     style_figure,
-    to_draw,
 )
 from core import Contact
 
@@ -209,15 +207,6 @@ class CurveScene(Scene):
                              "dy": [TAU1_DY if lb == "τ₁" else LANDMARK_DY for _, lb in marks],
                              "lo": [y.start] * len(marks), "hi": [y.end] * len(marks)})
 
-    def follow(self, *events: param.parameterized.Event) -> None:
-        """Draw a change of the state's contact or tau (a watcher: `app.contact.view.
-        connect`; what to draw is `app.kit.figures.to_draw`'s)."""
-        todo = to_draw(self, events)
-        if todo is not None:
-            c, tau, new = todo
-            if new:
-                self.update_contact(c)
-            self.update_tau(c, tau)
 
     def update_tau(self, c: Contact, tau: float) -> None:
         values = self.columns(c, np.array([tau]))

@@ -6,7 +6,6 @@ from __future__ import annotations
 from functools import cached_property
 
 import numpy as np
-import param
 from bokeh.models import (
     ColumnDataSource,
     Label,
@@ -22,7 +21,6 @@ from app.kit.figures import (
     new_figure,
     stamp,
     style_figure,
-    to_draw,
 )
 from app.kit.wire import inline
 from core import Contact, impulse_ratio
@@ -102,15 +100,6 @@ class ImpulseScene(Scene):
             grid = np.linspace(0.0, max(self.LINEAR_MAX, 1.1 * psi), CURVE_POINTS)
         return np.unique(np.concatenate([grid, [1.0]]))
 
-    def follow(self, *events: param.parameterized.Event) -> None:
-        """Draw a change of the state's contact or tau (a watcher: `app.contact.view.
-        connect`; what to draw is `app.kit.figures.to_draw`'s)."""
-        todo = to_draw(self, events)
-        if todo is not None:
-            c, tau, new = todo
-            if new:
-                self.update_contact(c)
-            self.update_tau(c, tau)
 
     def update_contact(self, c: Contact) -> None:
         show(self.marker, {"psi": [c.psi], "ratio": [c.impulse_ratio]})

@@ -40,7 +40,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import param
 from bokeh.models import (
     ColumnDataSource,
     Label,
@@ -67,7 +66,6 @@ from app.kit.figures import (
     png_name,
     stamp,
     style_figure,
-    to_draw,
 )
 from app.kit.wire import column
 from core import Contact
@@ -347,15 +345,6 @@ class SpheresScene(Scene):
         self.h_label.text_font_size = self.note.text_font_size = f"{points:g}pt"
         self.note.y_offset = -round(NOTE_LINES * points * 4 / 3 * 1.35 + 2, 1)
 
-    def follow(self, *events: param.parameterized.Event) -> None:
-        """Draw a change of the state's contact or tau (a watcher: `app.contact.view.
-        connect`; what to draw is `app.kit.figures.to_draw`'s)."""
-        todo = to_draw(self, events)
-        if todo is not None:
-            c, tau, new = todo
-            if new:
-                self.update_contact(c)
-            self.update_tau(c, tau)
 
     def update_contact(self, c: Contact) -> None:
         """The drive line and the scale note (they follow theta, so psi); the lower

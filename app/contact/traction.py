@@ -7,7 +7,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import param
 from bokeh.core.property.validation import validate
 from bokeh.models import (
     Annulus,
@@ -30,7 +29,6 @@ from app.kit.figures import (
     new_figure,
     stamp,
     style_figure,
-    to_draw,
 )
 from core import Contact
 
@@ -137,15 +135,6 @@ class TractionScene(Scene):
         return {"r/a*": r, "tau_u/(mu p*)": profile["traction"], "p/p*": profile["upper"],
                 "stick": ((np.abs(r) <= b) & (b > 0)).astype(float)}
 
-    def follow(self, *events: param.parameterized.Event) -> None:
-        """Draw a change of the state's contact or tau (a watcher: `app.contact.view.
-        connect`; what to draw is `app.kit.figures.to_draw`'s)."""
-        todo = to_draw(self, events)
-        if todo is not None:
-            c, tau, new = todo
-            if new:
-                self.update_contact(c)
-            self.update_tau(c, tau)
 
     def update_tau(self, c: Contact, tau: float) -> None:
         """The profile at time tau into the source `traction` (written here, only when a
@@ -196,14 +185,6 @@ class DiscScene(Scene):
         put(self.figure.x_range, start=-self.RIM * a_max, end=self.RIM * a_max)
         put(self.figure.y_range, start=-(self.RIM + self.BAND) * a_max, end=self.RIM * a_max)
 
-    def follow(self, *events: param.parameterized.Event) -> None:
-        """Draw a change of the state's contact or tau (`TractionScene.follow`)."""
-        todo = to_draw(self, events)
-        if todo is not None:
-            c, tau, new = todo
-            if new:
-                self.update_contact(c)
-            self.update_tau(c, tau)
 
     def update_tau(self, c: Contact, tau: float) -> None:
         line = c.at(tau)

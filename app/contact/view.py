@@ -5,8 +5,8 @@
 to a plot (docs/app.md, "How data flows"; `tests/app/test_slider_path.py` traces it):
 
     SliderModel.value --ExactSlider.take_move, feed--> ExplorerState.set_input (psi and
-      what follows: theta, tau, `current`) --watch--> TractionScene.follow
-      -> update_tau -> source.data (core's numbers)
+      what follows: theta, tau, `current`) --watch--> Scene.follow
+      -> TractionScene.update_tau -> source.data (core's numbers)
 
 The state derives its own contact (`ExplorerState.current`) and corrections; each scene
 follows the state's `current` and `tau` by its own watcher (`Scene.follow`: a hidden
@@ -105,7 +105,7 @@ class ContactView(param.Parameterized):
         contact the T(tau) family, the tau slider's range and the readout; the formulas
         and the caption at tau; the tau slider's value (a tau set elsewhere: a step, a
         typed value); while playing, the browser's player (re)started at the state's
-        place instead (the scenes draw nothing then: `app.kit.figures.to_draw`)."""
+        place instead (the scenes draw nothing then: `Scene.follow`)."""
         s = self.state
         c, tau = s.current, s.tau
         new = any(e.name == "current" for e in events)
@@ -280,7 +280,7 @@ def connect(view: ContactView) -> None:
     state derives what follows from it first (its own watchers, registered when it was
     made: `ExplorerState._follow_inputs`, which sets its contact `current` and its
     corrections, `_leave_preset`, `_leave_material`); then each scene draws the state's
-    contact and tau (its own `follow`), and the view shows what is its own; then the
+    contact and tau (`Scene.follow`), and the view shows what is its own; then the
     widgets show the state's values (a slider's own move comes back as the value it
     holds: nothing is sent).  The path of a slider move is docs/app.md's "How data
     flows"."""

@@ -19,6 +19,7 @@ import re
 import unicodedata
 
 import numpy as np
+import param
 from bokeh.events import LODStart, RangesUpdate
 from bokeh.models import (
     AllIndices,
@@ -342,9 +343,8 @@ def png_name(title: str) -> str:
 class Scene:
     """Base: a figure, its named source, and the two update hooks.
 
-    A scene follows a state's contact (`current`) and time (`tau`) by its own
-    `follow`, a watcher the feature subscribes (`app.contact.view.connect`); what to
-    draw after a change is `to_draw`'s."""
+    A scene follows a state's contact (`current`) and time (`tau`) by `follow`, a
+    watcher the feature subscribes (`app.contact.view.connect`)."""
 
     name: str = ""
     #: the tau0 (`float.hex`) of what the scene drew that depends on tau0 alone
@@ -370,6 +370,27 @@ class Scene:
         self._drawn_tau0 = key
         return True
 
+    def follow(self, *events: param.parameterized.Event) -> None:
+        """Draw `events`, changes of a state's `current` and `tau`
+        (`app.contact.state.ExplorerState`; a watcher `app.contact.view.connect`
+        subscribes): `update_contact` when the contact changed (or the scene is `stale`),
+        then `update_tau`.  Nothing when the scene is `hidden` (it is then marked
+        `stale`) or when only tau moved while the browser plays the frames (the scene
+        draws the tau the pause lands on: `app.contact.animation`).  The tau drawn is
+        noted as `drawn_tau`."""
+        state = events[0].obj
+        new = self.stale or any(e.name == "current" for e in events)
+        if self.hidden:
+            self.stale = True
+            return
+        if state.playing and not new:
+            return
+        self.stale = False
+        self.drawn_tau = tau = state.tau
+        if new:
+            self.update_contact(state.current)
+        self.update_tau(state.current, tau)
+
     def update_contact(self, c: Contact) -> None:
         """Recompute what depends on the parameters (default: nothing)."""
 
@@ -379,22 +400,3 @@ class Scene:
     def table(self) -> dict[str, np.ndarray]:
         """The data shown, for the CSV download."""
         return {k: np.asarray(v) for k, v in self.source.data.items()}
-
-
-def to_draw(scene: Scene, events: tuple) -> tuple[Contact, float, bool] | None:
-    """What `scene` draws after `events`, changes of a state's `current` and `tau`
-    (`app.contact.state.ExplorerState`): (the contact, tau, whether to draw what depends
-    on the contact too), or None: nothing, when the scene is hidden (it is then marked
-    `stale`) or when only tau moved while the browser plays the frames (the scene draws
-    the tau the pause lands on: `app.contact.animation`).  The tau returned is noted as
-    the scene's `drawn_tau`."""
-    state = events[0].obj
-    new = scene.stale or any(e.name == "current" for e in events)
-    if scene.hidden:
-        scene.stale = True
-        return None
-    if state.playing and not new:
-        return None
-    scene.stale = False
-    scene.drawn_tau = state.tau
-    return state.current, state.tau, new
