@@ -55,11 +55,12 @@ VIEW = "present"
 SPHERES_RIM = (10, 32)
 #: The disc's plot outside its frame (px): (across, down): the y axis with its label and
 #: the borders across; the title, the x axis with its label and the borders down.
-DISC_RIM = (105, 87)
+DISC_RIM = (105, 83)
 BADGE_FONT = "15pt"
 #: The spheres' and the disc's titles' type (their plots are the narrowest: 240 px on a
-#: zoomed laptop screen), and the disc's title's offset (px: over its y axis).
-NARROW_TITLE_FONT, DISC_TITLE_OFFSET = "12pt", -40
+#: zoomed laptop screen).  The disc's title ends at its frame's right edge: its y axis,
+#: wider or narrower with its tick labels, is left of it.
+NARROW_TITLE_FONT = "12pt"
 #: How many ticks the plots' y axes ask for (fewer than BokehJS's 6: a plot 180 px high
 #: keeps its tick labels apart).
 Y_TICKS = 5
@@ -179,9 +180,10 @@ def presentation(contact: ContactView, message: pn.viewable.Viewable,
     contact.spheres.badge.glyph.text_font_size = BADGE_FONT
     contact.spheres.set_note_size(NOTE_PT)
     contact.traction.caption.text_font_size = CAPTION_FONT
-    # (the disc's title keeps its type: its frame's aspect follows from `DISC_RIM`)
-    contact.spheres.figure.title.text_font_size = NARROW_TITLE_FONT
-    contact.disc.figure.title.offset = DISC_TITLE_OFFSET
+    # (the disc's title's type is in `DISC_RIM`: its frame's aspect follows from it)
+    for fig in (contact.spheres.figure, contact.disc.figure):
+        fig.title.text_font_size = NARROW_TITLE_FONT
+    contact.disc.figure.title.align = "right"
     traction, disc = contact.traction.figure, contact.disc.figure
     for fig, name in ((spheres, "pp-spheres"), (traction, "pp-traction"), (disc, "pp-disc")):
         stretched(fig, name)
