@@ -29,7 +29,6 @@ from app.kit.figures import (
     CURVE_POINTS,
     DATA_LEVEL,
     LINE_COLORS,
-    Scene,
     add_legend,
     draw,
     fit_range,
@@ -39,6 +38,7 @@ from app.kit.figures import (
     stamp,
     style_figure,
 )
+from app.kit.scene import Scene
 from core import Contact
 
 #: The landmark labels' offset below the frame's top (px), and tau1's, a line lower: it

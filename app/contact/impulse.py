@@ -17,11 +17,11 @@ from app.kit.figures import (
     CURVE_POINTS,
     DATA_LEVEL,
     STAMP_TAG,
-    Scene,
     new_figure,
     stamp,
     style_figure,
 )
+from app.kit.scene import Scene
 from app.kit.wire import inline
 from core import Contact, impulse_ratio
 

@@ -58,15 +58,8 @@ from bokeh.plotting import figure
 from app.contact import pictograms
 from app.contact.phases import STICK_COLOR, style
 from app.kit.changes import put, show
-from app.kit.figures import (
-    FRAME_LEVEL,
-    Scene,
-    draw,
-    follow_clock,
-    png_name,
-    stamp,
-    style_figure,
-)
+from app.kit.figures import FRAME_LEVEL, draw, follow_clock, png_name, stamp, style_figure
+from app.kit.scene import Scene
 from app.kit.wire import column
 from core import Contact
 from core.clock import half_sines

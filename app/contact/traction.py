@@ -22,7 +22,6 @@ from app.kit.figures import (
     DATA_LEVEL,
     FRAME_LEVEL,
     PROFILE_POINTS,
-    Scene,
     add_legend,
     draw,
     negated,
@@ -30,6 +29,7 @@ from app.kit.figures import (
     stamp,
     style_figure,
 )
+from app.kit.scene import Scene
 from core import Contact
 
 #: The traction profile's columns (`TractionScene.profiles`), as the browser's player

@@ -45,7 +45,7 @@ from app.contact.state import PRESETS, ExplorerState
 from app.contact.traction import DiscScene, TractionScene
 from app.kit.a11y import expandable_card
 from app.kit.batch import held
-from app.kit.figures import Scene
+from app.kit.scene import Scene
 from app.kit.style import TAB_ROW_CSS
 from app.kit.texts import PaneText
 from app.kit.widgets import sync

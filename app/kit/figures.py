@@ -1,9 +1,7 @@
 """Figures of the app's scenes: one style, one way to draw a glyph, ranges that fit.
 
-A scene (`Scene`) is one Bokeh figure fed by one named `ColumnDataSource`: the figure is
-built once and only its data changes (`source.data = ...`), so that a slider move sends
-numbers, not models.  Sources are named after their scene, so that tests and the browser
-find them with `get_model_by_name`.  The helpers here make every figure look alike
+A scene (`app.kit.scene.Scene`) is one Bokeh figure fed by one named `ColumnDataSource`;
+the helpers here make every figure look alike
 (`new_figure`, `style_figure`, `draw`, `add_legend`) and fit its ranges to the data
 (`fit_range`, `nice_step`); `png_name` names a plot's PNG download and `stamp`
 draws in it the contact and the time it shows.  What changes with a frame of the
@@ -19,7 +17,6 @@ import re
 import unicodedata
 
 import numpy as np
-import param
 from bokeh.events import LODStart, RangesUpdate
 from bokeh.models import (
     AllIndices,
@@ -42,7 +39,6 @@ from bokeh.plotting import figure
 from bokeh.transform import transform
 
 from app.kit.image_export import add_image_export
-from core import Contact
 
 TOOLS = "pan,wheel_zoom,box_zoom,reset,save"
 #: Greek letters of the plots' titles, spelled out in the PNG file names
@@ -338,65 +334,3 @@ def png_name(title: str) -> str:
     re-render the tool's button in the browser on every parameter change."""
     text = unicodedata.normalize("NFKD", title.translate(GREEK)).lower()
     return "_".join(["zharii", *re.findall(r"[a-z0-9]+", text)])
-
-
-class Scene:
-    """Base: a figure, its named source, and the two update hooks.
-
-    A scene follows a state's contact (`current`) and time (`tau`) by `follow`, a
-    watcher the feature subscribes (`app.contact.view.connect`)."""
-
-    name: str = ""
-    #: the tau0 (`float.hex`) of what the scene drew that depends on tau0 alone
-    _drawn_tau0: str | None = None
-
-    #: not on the page (a closed tab): it computes nothing and is `stale`
-    hidden: bool = False
-    #: it missed a change while hidden: drawn in full when shown again
-    stale: bool = False
-    #: the tau it last drew (None: nothing yet)
-    drawn_tau: float | None = None
-
-    def __init__(self, data: dict) -> None:
-        self.source = ColumnDataSource(data=data, name=self.name)
-
-    def note_tau0(self, c: Contact) -> bool:
-        """Note `c`'s tau0 as the one drawn, and say whether it differs from the one noted
-        before, bit for bit (-0.0 is not 0.0; True on the first call): what depends on
-        tau0 alone is drawn again only then."""
-        key = c.tau0.hex()
-        if key == self._drawn_tau0:
-            return False
-        self._drawn_tau0 = key
-        return True
-
-    def follow(self, *events: param.parameterized.Event) -> None:
-        """Draw `events`, changes of a state's `current` and `tau`
-        (`app.contact.state.ExplorerState`; a watcher `app.contact.view.connect`
-        subscribes): `update_contact` when the contact changed (or the scene is `stale`),
-        then `update_tau`.  Nothing when the scene is `hidden` (it is then marked
-        `stale`) or when only tau moved while the browser plays the frames (the scene
-        draws the tau the pause lands on: `app.contact.animation`).  The tau drawn is
-        noted as `drawn_tau`."""
-        state = events[0].obj
-        new = self.stale or any(e.name == "current" for e in events)
-        if self.hidden:
-            self.stale = True
-            return
-        if state.playing and not new:
-            return
-        self.stale = False
-        self.drawn_tau = tau = state.tau
-        if new:
-            self.update_contact(state.current)
-        self.update_tau(state.current, tau)
-
-    def update_contact(self, c: Contact) -> None:
-        """Recompute what depends on the parameters (default: nothing)."""
-
-    def update_tau(self, c: Contact, tau: float) -> None:
-        """Recompute what depends on the current tau (default: nothing)."""
-
-    def table(self) -> dict[str, np.ndarray]:
-        """The data shown, for the CSV download."""
-        return {k: np.asarray(v) for k, v in self.source.data.items()}
