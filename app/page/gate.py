@@ -13,11 +13,12 @@ before Panel or Bokeh see it, with 429 and a short page, when its client
 - no page load left (`PAGES`: a burst of page loads, refilled at a steady rate), or
 - no page build left (`app.page.guard.BUILDS`: its page would only show a note);
 
-and it holds back for `HOLD_S` (then serves) the page of a client that has thrown too
-many pages away (`THROWN`: closed while their explorer was built or right after it was
-sent; a pupil keeps the page open, a script in a loop closes each page as soon as it has
-it): such a loop builds at most one explorer per `HOLD_S`, and a visitor who closes a few
-pages quickly (a teacher trying links, a test) waits a little and is never refused.
+and it holds back (then serves) the page of a client that has thrown too many pages
+away (`THROWN`: closed while their explorer was built or right after it was sent; a pupil
+keeps the page open, a script in a loop closes each page as soon as it has it) until
+`THROWN` has refilled one, `THROWN_HOLD_S` at most: such a loop builds at most one
+explorer per `THROWN_HOLD_S`, and a visitor who closes a few pages quickly (a teacher
+trying links, a test) waits for the next one and is never refused.
 
 The refusal (`busy_page`) says when the address may load a page again (``Retry-After``)
 and opens the explorer at the same link then (a meta refresh; no script).  It is held
@@ -72,9 +73,12 @@ THROWN = ThrownPages(burst=thrown_burst(CLASS_SIZE), rate=1.0 / 10.0, within=THR
 #: The explorer's own path, below the server's prefix.
 APP_PATH = "/main"
 
-#: The longest a refusal or a thrower's page is held back (s), and the most answers held
-#: back at once (past them a refusal is answered at once, a page served at once).
+#: The longest a refusal is held back (s), and the most answers held back at once (past
+#: them a refusal is answered at once, a page served at once).
 HOLD_S, HELD = 2.0, 256
+
+#: The longest a thrower's page is held back (s): the time `THROWN` takes to refill one.
+THROWN_HOLD_S = 10.0
 
 
 def refusal_after(client: str) -> float:
@@ -115,7 +119,8 @@ class GatedDocHandler(DocHandler):
     """Panel's page handler, answering 429 (`busy_page`, ``Retry-After``) before any
     session is made to a client that may not load a page now (`refusal_after`), held
     back for up to `HOLD_S`, and serving a client that threw its pages away (`THROWN`)
-    after `HOLD_S` (see the module docstring)."""
+    once it may have one built again, `THROWN_HOLD_S` at most (see the module
+    docstring)."""
 
     #: The answers being held back now (of this process).
     held = 0
@@ -136,8 +141,8 @@ class GatedDocHandler(DocHandler):
         client = client_key(str(self.request.remote_ip))
         after = refusal_after(client)
         if after <= 0.0:
-            if THROWN.retry_after(client) > 0.0:
-                await self.hold(HOLD_S)
+            if (wait := THROWN.retry_after(client)) > 0.0:
+                await self.hold(min(wait, THROWN_HOLD_S))
             await super().prepare()
             return
         if await self.hold(min(after, HOLD_S)):

@@ -237,8 +237,9 @@ def test_pages_thrown_away_are_counted_and_kept_ones_are_not() -> None:
 def test_a_client_throwing_its_pages_away_waits_for_its_next_page(served,  # noqa: F811
                                                                   monkeypatch) -> None:
     """Pages loaded and closed as soon as they come (a script in a loop) use up the
-    client's thrown pages (`app.page.gate.THROWN`): its next page is held back
-    `app.page.gate.HOLD_S` before any session is made, then served (never refused);
+    client's thrown pages (`app.page.gate.THROWN`): its next page is held back until
+    one is refilled (here never: `app.page.gate.THROWN_HOLD_S`) before any session is
+    made, then served (never refused);
     pages kept open (a class) take none of them and are answered at once."""
     import asyncio
 
@@ -250,7 +251,7 @@ def test_a_client_throwing_its_pages_away_waits_for_its_next_page(served,  # noq
 
     url, server = served
     monkeypatch.setattr(app.page.gate, "THROWN", ThrownPages(burst=2, rate=1e-6, within=3.0))
-    monkeypatch.setattr(app.page.gate, "HOLD_S", 1.5)
+    monkeypatch.setattr(app.page.gate, "THROWN_HOLD_S", 1.5)
 
     async def kept(n: int) -> None:
         tabs = [Tab(url, AsyncHTTPClient()) for _ in range(n)]
