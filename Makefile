@@ -49,13 +49,13 @@ lint: venv
 
 # (the compiled kernels first, into numba's cache: the servers the browser tests start
 # then load them rather than compile them while the tests run)
-test: venv browser lammps
+test: venv browser lammps nginx
 	$(VENV)/bin/ruff check .
 	$(PY) -m core.warm
 	$(VENV)/bin/pytest
 
 # Every test that needs no browser (core, numerics, the app's document, export, wire,
-# sessions and server security; not the browser tests nor the nginx replicas): ~3 min (2 min 57 s here, idle).
+# sessions and server security; not the browser tests nor the nginx replicas): ~5 min here.
 test-fast: venv
 	$(VENV)/bin/ruff check .
 	$(VENV)/bin/pytest -q -m "not browser and not slow"

@@ -13,6 +13,7 @@ import numpy as np
 import param
 from bokeh.models import ColumnDataSource
 
+from app.kit.batch import held
 from core import Contact
 
 
@@ -53,7 +54,9 @@ class Scene:
         then `update_tau`.  Nothing when the scene is `hidden` (it is then marked
         `stale`) or when only tau moved while the browser plays the frames (the scene
         draws the tau the pause lands on: `app.contact.animation`).  The tau drawn is
-        noted as `drawn_tau`."""
+        noted as `drawn_tau`.  It draws inside `held`: a change that reaches the state
+        from Panel's handling of a browser event (Enter in a text box, a click, with a
+        change of a widget's value pending) comes without Bokeh's document lock."""
         state = events[0].obj
         new = self.stale or any(e.name == "current" for e in events)
         if self.hidden:
@@ -63,9 +66,10 @@ class Scene:
             return
         self.stale = False
         self.drawn_tau = tau = state.tau
-        if new:
-            self.update_contact(state.current)
-        self.update_tau(state.current, tau)
+        with held():
+            if new:
+                self.update_contact(state.current)
+            self.update_tau(state.current, tau)
 
     def update_contact(self, c: Contact) -> None:
         """Recompute what depends on the parameters (default: nothing)."""

@@ -10,7 +10,9 @@ shown.
 from __future__ import annotations
 
 import html
+import json
 import math
+from concurrent.futures import ThreadPoolExecutor
 from urllib.parse import parse_qs, urlencode, urlsplit
 
 import pytest
@@ -307,3 +309,55 @@ def test_typed_values_show_in_the_units_and_warn_in_chromium(browser, url) -> No
     assert shared["physical"] == ["1"] and shared["R"] == ["0.005"]
     assert [m for m in console if m.startswith(("error", "pageerror"))] == []
     page.close()
+
+
+# ------------------------------------------------------- served, without a browser
+
+
+def test_a_typed_value_submitted_with_enter_is_drawn_without_an_error(url) -> None:
+    """Text typed in a box goes to the server as it is typed (`value_input`, a change
+    Panel handles a moment later) and Enter as Panel's `enter-pressed` event, which sets
+    the box's value: Panel handles the two together, without Bokeh's document lock, and
+    every plot the new contact redraws must still be written (inside Panel's hold:
+    `app.kit.scene.Scene.follow`).  Here over the websocket, as BokehJS sends them: the
+    warning under the box and the traction profile of the new contact (H = 1500 µm)
+    come back."""
+    import asyncio
+
+    from bokeh_client import Tab, models, named
+    from tornado.httpclient import AsyncHTTPClient
+
+    q = {"physical": "1", "material": "steel", "R": "0.005", "H": "2.5e-06",
+         "u0": "1.2e-06", "h": "-5e-07", "omega": repr(2 * math.pi * 30e3)}
+    text = warning(FIELDS["H"], to_si(FIELDS["H"], 1500.0))
+
+    async def enter() -> tuple[list[str], str]:
+        tab = Tab(f"{url}?{urlencode(q)}", AsyncHTTPClient())
+        await tab.open()
+        try:
+            await tab.quiet(0.5)
+            (box,) = [i for i, m in models(tab.doc).items()
+                      if "si-H" in (m.get("attributes", {}).get("css_classes") or [])]
+            # (typed: the text into `value_input`; then Enter: Panel's event)
+            await tab.send("PATCH-DOC", {"events": [{
+                "kind": "ModelChanged", "model": {"id": box}, "attr": "value_input",
+                "new": "1500"}]})
+            await tab.send("PATCH-DOC", {"events": [{
+                "kind": "MessageSent", "msg_type": "bokeh_event",
+                "msg_data": {"type": "event", "name": "enter-pressed", "values": {
+                    "type": "map",
+                    "entries": [["model", {"id": box}], ["value_input", "1500"]]}}}]})
+            (traction,) = named(tab.doc, "traction")
+            return [content for header, content in await tab.quiet(1.5)
+                    if header["msgtype"] == "PATCH-DOC"], traction
+        finally:
+            tab.close()
+
+    # (on a thread of its own: a browser test of this module leaves Playwright's loop
+    # running on this one)
+    with ThreadPoolExecutor(1) as pool:
+        patches, traction = pool.submit(asyncio.run, enter()).result()
+    events = [e for p in patches for e in json.loads(p)["events"]]
+    assert any(text in html.unescape(str(e.get("new"))) for e in events), "no warning"
+    changed = {e["model"]["id"] for e in events if e.get("kind") == "ColumnDataChanged"}
+    assert traction in changed  # (the contact's psi follows H: its profile is new)
