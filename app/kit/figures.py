@@ -32,6 +32,7 @@ from bokeh.models import (
     PanTool,
     Range1d,
     SaveTool,
+    Title,
     UnionRenderers,
     WheelZoomTool,
 )
@@ -325,6 +326,29 @@ def stamp(fig, sep: str = "   ", **place) -> Label:
     fig.js_on_change("inner_width", CustomJS(code=STAMPS_JS, args={"scan": True,
                                                                     "source": None}))
     return label
+
+
+#: The separator and type of a stamp drawn under the frame (`stamp_outside`): one line of
+#: 210 px, for the narrowest plots (240 px).
+BELOW_SEP, BELOW_FONT = ", ", "8pt"
+
+
+def stamp_outside(fig, side: str = "below") -> None:
+    """Draw `fig`'s stamp (`stamp`) outside its frame, in one line: below the x axis
+    (`side` "below"), ending at the frame's right edge, or up the frame's right edge
+    ("right", for a plot whose height is dear), as a `Title` the browser writes as it
+    writes the stamp, where no data is drawn (for plots too small for the stamp to find
+    a free corner of the frame).  Its `Label` leaves the figure; calling it again
+    changes nothing."""
+    labels = [r for r in fig.center if isinstance(r, Label) and STAMP_TAG in r.tags]
+    if not labels:
+        return
+    fig.center = [r for r in fig.center if r not in labels]
+    label = labels[0]
+    fig.add_layout(Title(text="", tags=[STAMP_TAG, BELOW_SEP],
+                         align="right" if side == "below" else "left",
+                         text_font_size=BELOW_FONT, text_font_style="normal",
+                         text_color=label.text_color, standoff=2), side)
 
 
 def png_name(title: str) -> str:

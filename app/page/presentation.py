@@ -36,6 +36,7 @@ from bokeh.models import CustomJS
 
 from app.contact.view import ContactView
 from app.kit.a11y import Landmark
+from app.kit.figures import stamp_outside
 from app.page import keyboard, layout
 from app.page.present_css import (
     CONTROLS_CSS,
@@ -51,11 +52,13 @@ from app.page.projector import Projector
 VIEW = "present"
 
 #: The spheres' plot outside its frame (px, with the type of `app.kit.figures.style_figure`):
-#: (across, down): its borders across; its title and toolbar down (no borders there).
-SPHERES_RIM = (10, 32)
+#: (across, down): its borders and its stamp (up the frame's right edge) across; its
+#: title and toolbar down (no borders there).
+SPHERES_RIM = (19, 30)
 #: The disc's plot outside its frame (px): (across, down): the y axis with its label and
-#: the borders across; the title, the x axis with its label and the borders down.
-DISC_RIM = (105, 83)
+#: the borders across; the title, the x axis with its label, the stamp and the borders
+#: down.
+DISC_RIM = (105, 96)
 BADGE_FONT = "15pt"
 #: The spheres' and the disc's titles' type (their plots are the narrowest: 240 px on a
 #: zoomed laptop screen).  The disc's title ends at its frame's right edge: its y axis,
@@ -130,6 +133,7 @@ class CurveSlot:
             return
         for fig in figs:
             stretched(fig, "pp-curve")
+            stamp_outside(fig)
             self.projector.style(fig)
         self.pane.objects = [pn.pane.Bokeh(fig) for fig in figs]
 
@@ -187,6 +191,9 @@ def presentation(contact: ContactView, message: pn.viewable.Viewable,
     traction, disc = contact.traction.figure, contact.disc.figure
     for fig, name in ((spheres, "pp-spheres"), (traction, "pp-traction"), (disc, "pp-disc")):
         stretched(fig, name)
+    for fig in (traction, disc):
+        stamp_outside(fig)
+    stamp_outside(spheres, "right")  # (the spheres' height is the screen's)
     # equal scales: their frames are their boxes less a fixed rim, so not aligned with
     # their neighbours' frames (BokehJS aligns them by default: the traction plot's
     # legend row above its frame would push the disc's frame down, out of its aspect)

@@ -6,12 +6,12 @@ from __future__ import annotations
 
 #: JavaScript: for each plot drawn (a Figure view of some size): its title, canvas and
 #: frame boxes [left, top, right, bottom] (CSS px, in the window); `texts`, the box of
-#: every text drawn on it: the title's, each `Label`'s (`stamp` true for the
-#: psi/tau0/tau stamp; `clipped`: BokehJS clips it to the frame) and each point of each
-#: `Text` glyph (`clipped` below the overlay level); `ticks`, per y axis, the least
-#: distance between two major ticks and the tick labels' height (px); `points`, the
-#: screen points of the other glyphs (lines, markers, segments' ends), and `circles`
-#: [x, y, r] of the circles and annuli drawn.
+#: every text drawn on it (a turned one's box around it): the titles', each `Label`'s
+#: (`stamp` true for the psi/tau0/tau stamp; `clipped`: BokehJS clips it to the frame)
+#: and each point of each `Text` glyph (`clipped` below the overlay level); `ticks`, per
+#: y axis, the least distance between two major ticks and the tick labels' height (px);
+#: `points`, the screen points of the other glyphs (lines, markers, segments' ends), and
+#: `circles` [x, y, r] of the circles and annuli drawn.
 JS_CANVAS_TEXTS = r"""() => {
   const views = [];
   const walk = (v) => {
@@ -33,9 +33,16 @@ JS_CANVAS_TEXTS = r"""() => {
     for (const [m, rv] of v.renderer_views) {
       if (!m.visible) continue;
       if (rv._rect != null && typeof m.text === "string" && m.text.trim() !== "") {
-        const {sx, sy, width, height, anchor} = rv._rect;
-        const left = sx - anchor.x * width, top = sy - anchor.y * height;
-        texts.push({text: m.text.slice(0, 40), box: at(left, top, left + width, top + height),
+        // (a title on a side is drawn turned by `angle` about its anchor point)
+        const {sx, sy, width, height, anchor} = rv._rect, angle = rv._rect.angle ?? 0;
+        const x0 = -anchor.x * width, y0 = -anchor.y * height;
+        const corners = [[x0, y0], [x0 + width, y0], [x0, y0 + height],
+                         [x0 + width, y0 + height]].map(([dx, dy]) => [
+          sx + dx * Math.cos(angle) - dy * Math.sin(angle),
+          sy + dx * Math.sin(angle) + dy * Math.cos(angle)]);
+        const xs = corners.map((q) => q[0]), ys = corners.map((q) => q[1]);
+        texts.push({text: m.text.slice(0, 40),
+                    box: at(Math.min(...xs), Math.min(...ys), Math.max(...xs), Math.max(...ys)),
                     clipped: m.type === "Label", title: m.type === "Title",
                     stamp: m.tags.includes("png-stamp")});
       } else if (m.type === "GlyphRenderer") {

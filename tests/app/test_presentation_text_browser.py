@@ -2,14 +2,16 @@
 125, 150 and 200 % zoom, on a phone and with the projector's larger type, no two texts
 of a plot over each other (the traction caption over the psi/tau0/tau stamp, the phase
 badge into the stamp, the pictograms' labels run together: "contactrelease"), none cut
-by its frame or canvas (the pictograms' labels, the titles with larger type), and no y
-tick labels stacked.  The boxes are BokehJS's own (`present_texts.JS_CANVAS_TEXTS`)."""
+by its frame or canvas (the pictograms' labels, the titles with larger type), no y
+tick labels stacked, and no psi/tau0/tau stamp over a curve, a sphere's outline or the
+disc's circles (the stamps are outside the frames: `app.kit.figures.stamp_outside`).
+The boxes are BokehJS's own (`present_texts.JS_CANVAS_TEXTS`)."""
 
 from __future__ import annotations
 
 import pytest
 from explorer_browser import JS_READY, steady
-from present_texts import JS_CANVAS_TEXTS, text_defects
+from present_texts import JS_CANVAS_TEXTS, stamp_over_data, text_defects
 from test_presentation_browser import open_present
 
 from app.page.projector import LABEL as PROJECTOR_LABEL
@@ -42,5 +44,6 @@ def test_no_text_on_a_plot_collides_or_is_cut(browser, url, screen, zoom, projec
         traction = next(p for p in plots if p["title"] == "Traction profile")
         assert min(t["height"] for t in traction["ticks"]) >= 21
     assert text_defects(plots) == []
+    assert stamp_over_data(plots) == []
     assert [m for m in console if m.startswith(("error", "pageerror"))] == []
     page.close()
