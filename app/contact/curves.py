@@ -36,6 +36,7 @@ from app.kit.figures import (
     negated,
     new_figure,
     stamp,
+    stamp_outside,
     style_figure,
 )
 from app.kit.scene import Scene
@@ -52,10 +53,6 @@ STAMP_CORNERS = {
     # under the landmarks' labels, tau1's (a line lower) included
     "top_left": ("start", "end", {"sep": "   ", "text_align": "left", "text_baseline": "top",
                                   "x_offset": 4, "y_offset": -(TAU1_DY + 20)}),
-    # where the Coulomb bound +-mu P closes towards pi - tau0: T, within it, is small
-    "bottom_right": ("end", "start", {"sep": "\n", "text_align": "right",
-                                      "text_baseline": "bottom",
-                                      "x_offset": -4, "y_offset": 4}),
 }
 
 
@@ -78,8 +75,10 @@ class CurveScene(Scene):
     """
 
     curves: tuple[tuple[str, str, str, str], ...] = ()
-    #: the corner of the stamp (`STAMP_CORNERS`): one the curves leave empty
-    stamp_corner = "top_left"
+    #: the corner of the stamp (`STAMP_CORNERS`): one the curves leave empty; None: under
+    #: the x axis (`app.kit.figures.stamp_outside`), for curves that leave none empty at
+    #: every width of the plot
+    stamp_corner: str | None = "top_left"
     #: the curves drawn as the negative of another column: {curve: column}
     mirrors: ClassVar[dict[str, str]] = {}
     title = ""
@@ -156,9 +155,14 @@ class CurveScene(Scene):
             draw(fig, Segment, self.marker, x0="x", y0="lo", x1="x", y1="hi",
                  line_color="#666666", line_width=2, line_dash="dotted", level=DATA_LEVEL,
                  **view)
-            # psi, tau0 and tau in the plot's empty corner (placed with the ranges)
-            self._stamps.append(stamp(fig, x_units="data", y_units="data",
-                                      **STAMP_CORNERS[self.stamp_corner][2]))
+            # psi, tau0 and tau in the plot's empty corner (placed with the ranges), or
+            # under its x axis
+            if self.stamp_corner is None:
+                stamp(fig)
+                stamp_outside(fig)
+            else:
+                self._stamps.append(stamp(fig, x_units="data", y_units="data",
+                                          **STAMP_CORNERS[self.stamp_corner][2]))
             style_figure(fig)
             if k:
                 fig.title.text_font_size = "13pt"
@@ -198,7 +202,8 @@ class CurveScene(Scene):
                                                 self._landmarks, strict=True):
             y = fig.y_range
             fit_range(y, *(columns[col] for col in cols), pad=0.03, snap=True)
-            place_stamp(self._stamps[self.figures.index(fig)], fig, self.stamp_corner)
+            if self.stamp_corner is not None:
+                place_stamp(self._stamps[self.figures.index(fig)], fig, self.stamp_corner)
             # the first and last labels inside the frame (at its edges, centred, they
             # would be cut)
             align = ["left", *["center"] * (len(marks) - 2), "right"]
@@ -226,7 +231,8 @@ class ForceScene(CurveScene):
     name = "force"
     title = "Tangential force T / T₀"
     y_label = "T / T₀"
-    stamp_corner = "bottom_right"
+    # (the bound -mu P fills the bottom right corner of a plot as narrow as a phone's)
+    stamp_corner = None
     curves = (
         ("T", "T / T₀", "#000000", "solid"),
         ("muP", "±μP / T₀", "#999999", "dashed"),

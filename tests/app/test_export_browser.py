@@ -28,7 +28,8 @@ JS_PLOT = """(title) => {
   const save = [...bar.children()].find((b) => b.model.tool.type === "SaveTool");
   const rect = (el) => { const r = el.getBoundingClientRect();
                          return [r.x, r.y, r.width, r.height]; };
-  const stamp = plot.model.center.find((m) => m.tags.includes("png-stamp"));
+  const stamp = [...plot.model.center, ...plot.model.below, ...plot.model.right]
+    .find((m) => m.tags.includes("png-stamp"));
   const f = plot.frame.bbox;
   return {plot: rect(plot.el), canvas: [plot.canvas_view.bbox.width,
                                         plot.canvas_view.bbox.height],

@@ -16,6 +16,8 @@ from explorer_browser import column, open_explorer, wait_until
 from PIL import Image
 from test_export_browser import JS_PLOT, save_plot
 
+from app.kit.figures import BELOW_SEP
+
 pytestmark = pytest.mark.browser
 
 #: JavaScript: the page rectangles of plot `title`'s canvas and frame, and its title band
@@ -98,7 +100,8 @@ def test_a_panned_curve_never_covers_the_title(browser, url, title, source) -> N
 JS_SHOW_STAMP = """([title, visible]) => {
   const plot = __views((v) => v.model != null && v.model.type === "Figure"
                        && v.model.title != null && v.model.title.text === title)[0];
-  plot.model.center.find((m) => m.tags.includes("png-stamp"))
+  [...plot.model.center, ...plot.model.below, ...plot.model.right]
+    .find((m) => m.tags.includes("png-stamp"))
     .setv({visible: visible}, {sync: false});
 }"""
 
@@ -127,7 +130,7 @@ def stamp_of(psi: float, tau0: float, tau: float, sep: str = "   ") -> str:
                      f"τ = {tau:.4f} rad"])
 
 
-STAMPED = [("Traction profile", "   "), ("Tangential force T / T₀", "\n"),
+STAMPED = [("Traction profile", "   "), ("Tangential force T / T₀", BELOW_SEP),
            ("Two spheres in section", "\n"), ("Contact disc (top view)", "\n")]
 
 
@@ -177,7 +180,8 @@ def test_the_stamps_follow_the_played_frames(browser, url) -> None:
     read = ("() => [__col('spheres_forces', 'tau')[0], __slider('tau0').value, "
             "__psi(), ...__views((v) => v.model != null && v.model.type === 'Figure' && "
             "['Traction profile', 'Tangential force T / T₀'].includes(v.model.title.text))"
-            ".map((v) => v.model.center.find((m) => m.tags.includes('png-stamp')).text)]")
+            ".map((v) => [...v.model.center, ...v.model.below]"
+            ".find((m) => m.tags.includes('png-stamp')).text)]")
     seen = set()
     for _ in range(3):
         tau, tau0, psi, *stamps = wait_until(
@@ -185,5 +189,5 @@ def test_the_stamps_follow_the_played_frames(browser, url) -> None:
             what="a new frame")
         seen.add(tau)
         assert sorted(stamps) == sorted([stamp_of(psi, tau0, tau),  # (traction: a line)
-                                         stamp_of(psi, tau0, tau, "\n")])  # (T: stacked)
+                                         stamp_of(psi, tau0, tau, BELOW_SEP)])  # (T: under)
     page.close()

@@ -1,6 +1,7 @@
 """The plots' psi/tau0/tau stamps cover no data (issue 39), in Debian's Chromium: on the
-full page at 1920x1080 and 1280x720, T(tau)'s stamp stands in the corner where the
-Coulomb bound closes towards pi - tau0, Fig. 8's where the impulse ratio has fallen
+full page at 1920x1080, 1280x720 and on a 390x844 phone, T(tau)'s stamp stands under its
+x axis (in a corner it crossed the Coulomb bound on a phone), Fig. 8's where the impulse
+ratio has fallen
 from its peak (it covered Fig. 7's rising curves and Fig. 8's point "3") and the disc's in
 a band below the circle of the largest contact (it crossed that circle).  Measured on
 BokehJS's own text boxes and data points (`present_texts`)."""
@@ -29,8 +30,8 @@ def plots_titled(page, title: str) -> list[dict]:
     return found
 
 
-@pytest.mark.parametrize("screen", [(1920, 1080), (1280, 720)],
-                         ids=["1920x1080", "1280x720"])
+@pytest.mark.parametrize("screen", [(1920, 1080), (1280, 720), (390, 844)],
+                         ids=["1920x1080", "1280x720", "390x844"])
 def test_the_curve_stamps_cover_no_data(browser, url, screen) -> None:
     page, console = open_explorer(browser, url, *screen)
     page.get_by_role("tab", name="T(τ) (Fig. 7)").scroll_into_view_if_needed()
