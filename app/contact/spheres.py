@@ -89,6 +89,10 @@ PERIOD = (-math.pi / 2, 3 * math.pi / 2)
 STRIP_Y, STRIP_HEIGHT = -2.95, 0.22
 
 
+#: The farthest from the strip's middle (sphere radii) a word over it is centred.
+WORDS_REACH = 1.3
+
+
 def strip_x(taus: np.ndarray) -> np.ndarray:
     """The x (sphere radii) of the times `taus` (rad) on the period strip."""
     return -1.5 + 3.0 * (np.asarray(taus, float) - PERIOD[0]) / (PERIOD[1] - PERIOD[0])
@@ -120,9 +124,9 @@ def scale_note(c: Contact) -> str:
         true_h = sc.alpha_star**2 / (2 * sc.a_star**2 * one_minus_sin_tau0(c))
         note = f"displacements drawn ×{H / true_h:.3g}"
     else:
-        note = "not to scale: H drawn as 0.15 R"
-    if u0 < DRIVE * math.tan(c.theta):
-        note += f", u₀ at most {MAX_SIDE:g} R"
+        note = f"not to scale: H as {DRIVE:g} R"
+    if u0 < DRIVE * math.tan(c.theta):  # (short: the plot may be 240 px wide)
+        note += f", u₀ ≤ {MAX_SIDE:g} R"
     return note
 
 
@@ -367,7 +371,9 @@ class SpheresScene(Scene):
                                    "hi": np.full(inside.size, STRIP_Y + STRIP_HEIGHT)})
         words = {"apart": (PERIOD[0] + c.tau0) / 2, "contact": math.pi / 2,
                  "apart ": (c.tau_end + PERIOD[1]) / 2}
-        show(self.period_words, {"x": list(strip_x(np.array(list(words.values())))),
+        # (a short gap's word kept inside the strip: centred at its end it would be cut)
+        at = np.clip(strip_x(np.array(list(words.values()))), -WORDS_REACH, WORDS_REACH)
+        show(self.period_words, {"x": list(at),
                                  "text": [w.strip() for w in words]})
         drawn = pictograms.pictograms(c)
         when = np.array(drawn["tau"])

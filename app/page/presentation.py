@@ -65,8 +65,8 @@ BADGE_FONT = "15pt"
 #: wider or narrower with its tick labels, is left of it.
 NARROW_TITLE_FONT = "12pt"
 #: How many ticks the plots' y axes ask for (fewer than BokehJS's 6: a plot 180 px high
-#: keeps its tick labels apart).
-Y_TICKS = 5
+#: keeps its tick labels apart, whatever the curve's range).
+Y_TICKS = 4
 #: The type of the notes under the spheres and of the traction profile's caption (pt):
 #: smaller than the full page's, for the plots of a zoomed laptop screen (240 px wide).
 NOTE_PT, CAPTION_FONT = 9, "11pt"

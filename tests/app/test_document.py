@@ -1010,13 +1010,13 @@ def test_the_spheres_are_drawn_from_core(psi: float, tau0: float, tau: float) ->
 
 def test_the_spheres_note_states_the_scale() -> None:
     ex = Explorer()
-    assert ex.contact.spheres.note.text == "not to scale: H drawn as 0.15 R"
+    assert ex.contact.spheres.note.text == "not to scale: H as 0.15 R"
     ex.state.param.update(R=0.01, H=2e-6, u0=1e-6, h=1e-6, omega=1e5)
     ex.contact.controls.physical_box.value = True
     assert ex.contact.spheres.note.text == f"displacements drawn ×{0.15 * 0.01 / 2e-6:.3g}"
     ex.contact.controls.physical_box.value = False
     ex.state.psi = 1e4  # u0 beyond the drawing: shortened, and said so
-    assert ex.contact.spheres.note.text == "not to scale: H drawn as 0.15 R, u₀ at most 0.45 R"
+    assert ex.contact.spheres.note.text == "not to scale: H as 0.15 R, u₀ ≤ 0.45 R"
 
 
 def test_the_player_animates_the_spheres() -> None:

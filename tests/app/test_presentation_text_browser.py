@@ -47,3 +47,21 @@ def test_no_text_on_a_plot_collides_or_is_cut(browser, url, screen, zoom, projec
     assert stamp_over_data(plots) == []
     assert [m for m in console if m.startswith(("error", "pageerror"))] == []
     page.close()
+
+
+@pytest.mark.parametrize("link", ["psi=30&tau0=-1.2", "psi=1e4"])
+def test_no_text_collides_or_is_cut_at_the_edges_of_the_domain(browser, url, link) -> None:
+    """At the narrowest plots (1280x720 at 150 %): a contact from early in the period
+    (a short gap before it: the strip's word "apart" at its end) and one whose sideways
+    drive is beyond the drawing (the spheres' note says so, at length), with the y ticks
+    of their T(tau)."""
+    page, console = open_present(browser, f"{url}?view=present&{link}", (1280, 720), 1.5)
+    page.wait_for_function(JS_READY, timeout=60_000)
+    page.evaluate("() => document.fonts.ready.then(() => true)")
+    page.wait_for_function("() => Bokeh.documents[0].is_idle", timeout=20_000)
+    plots = steady(lambda: page.evaluate(JS_CANVAS_TEXTS))
+    assert sum(t["stamp"] for p in plots for t in p["texts"]) == 4
+    assert text_defects(plots) == []
+    assert stamp_over_data(plots) == []
+    assert [m for m in console if m.startswith(("error", "pageerror"))] == []
+    page.close()
