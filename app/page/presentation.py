@@ -65,8 +65,9 @@ BADGE_FONT = "15pt"
 #: wider or narrower with its tick labels, is left of it.
 NARROW_TITLE_FONT = "12pt"
 #: How many ticks the plots' y axes ask for (fewer than BokehJS's 6: a plot 180 px high
-#: keeps its tick labels apart, whatever the curve's range).
-Y_TICKS = 4
+#: keeps its tick labels apart), and the curves' under the traction profile (fewer
+#: still: their ranges follow the curves, whatever they span).
+Y_TICKS, CURVE_Y_TICKS = 5, 4
 #: The type of the notes under the spheres and of the traction profile's caption (pt):
 #: smaller than the full page's, for the plots of a zoomed laptop screen (240 px wide).
 NOTE_PT, CAPTION_FONT = 9, "11pt"
@@ -92,14 +93,14 @@ def panels(figure) -> list:
     return list(figure.children) if isinstance(figure, BokehColumn) else [figure]
 
 
-def stretched(fig, css_class: str) -> None:
+def stretched(fig, css_class: str, ticks: int = Y_TICKS) -> None:
     """`fig` sized by the page's CSS: stretched to its box, no margin, class `css_class`;
-    its y axes with `Y_TICKS` ticks."""
+    its y axes with `ticks` ticks."""
     fig.sizing_mode, fig.margin = "stretch_both", 0
     fig.min_width = fig.max_width = None
     for axis in fig.yaxis:
         if "desired_num_ticks" in axis.ticker.properties():
-            axis.ticker.desired_num_ticks = Y_TICKS
+            axis.ticker.desired_num_ticks = ticks
     if css_class not in fig.css_classes:
         fig.css_classes = [*fig.css_classes, css_class]
 
@@ -132,7 +133,7 @@ class CurveSlot:
         if [p.object for p in self.pane.objects] == figs:
             return
         for fig in figs:
-            stretched(fig, "pp-curve")
+            stretched(fig, "pp-curve", CURVE_Y_TICKS)
             stamp_outside(fig)
             self.projector.style(fig)
         self.pane.objects = [pn.pane.Bokeh(fig) for fig in figs]
