@@ -212,7 +212,6 @@ class CurveScene(Scene):
                              "dy": [TAU1_DY if lb == "τ₁" else LANDMARK_DY for _, lb in marks],
                              "lo": [y.start] * len(marks), "hi": [y.end] * len(marks)})
 
-
     def update_tau(self, c: Contact, tau: float) -> None:
         values = self.columns(c, np.array([tau]))
         ranges = [self._y_range(col) for col, *_ in self.curves]

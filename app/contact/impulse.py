@@ -100,7 +100,6 @@ class ImpulseScene(Scene):
             grid = np.linspace(0.0, max(self.LINEAR_MAX, 1.1 * psi), CURVE_POINTS)
         return np.unique(np.concatenate([grid, [1.0]]))
 
-
     def update_contact(self, c: Contact) -> None:
         show(self.marker, {"psi": [c.psi], "ratio": [c.impulse_ratio]})
         psi = self.psi_grid(c.psi)

@@ -342,7 +342,6 @@ class SpheresScene(Scene):
         self.h_label.text_font_size = self.note.text_font_size = f"{points:g}pt"
         self.note.y_offset = -round(NOTE_LINES * points * 4 / 3 * 1.35 + 2, 1)
 
-
     def update_contact(self, c: Contact) -> None:
         """The drive line and the scale note (they follow theta, so psi); the lower
         sphere at rest (tau = 0), the period strip and the pictograms (tau0 alone: drawn

@@ -135,7 +135,6 @@ class TractionScene(Scene):
         return {"r/a*": r, "tau_u/(mu p*)": profile["traction"], "p/p*": profile["upper"],
                 "stick": ((np.abs(r) <= b) & (b > 0)).astype(float)}
 
-
     def update_tau(self, c: Contact, tau: float) -> None:
         """The profile at time tau into the source `traction` (written here, only when a
         column differs: `app.kit.changes.changed`; Bokeh does not validate the columns),
@@ -184,7 +183,6 @@ class DiscScene(Scene):
         put(self.envelope.glyph, radius=a_max)
         put(self.figure.x_range, start=-self.RIM * a_max, end=self.RIM * a_max)
         put(self.figure.y_range, start=-(self.RIM + self.BAND) * a_max, end=self.RIM * a_max)
-
 
     def update_tau(self, c: Contact, tau: float) -> None:
         line = c.at(tau)

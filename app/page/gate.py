@@ -66,9 +66,15 @@ def thrown_burst(class_size: int) -> float:
     return float(max(3, class_size // 16))
 
 
+#: The time in which a client's thrown pages refill one (s), and the longest a thrower's
+#: page is held back.
+THROWN_HOLD_S = 10.0
+
 #: The pages of this server process thrown, per client: 3 at once (a class of
-#: `CLASS_SIZE`, `thrown_burst`), then one every 10 s; past them a page is held back.
-THROWN = ThrownPages(burst=thrown_burst(CLASS_SIZE), rate=1.0 / 10.0, within=THROWN_WITHIN_S)
+#: `CLASS_SIZE`, `thrown_burst`), then one every `THROWN_HOLD_S`; past them a page is
+#: held back.
+THROWN = ThrownPages(burst=thrown_burst(CLASS_SIZE), rate=1.0 / THROWN_HOLD_S,
+                     within=THROWN_WITHIN_S)
 
 #: The explorer's own path, below the server's prefix.
 APP_PATH = "/main"
@@ -76,9 +82,6 @@ APP_PATH = "/main"
 #: The longest a refusal is held back (s), and the most answers held back at once (past
 #: them a refusal is answered at once, a page served at once).
 HOLD_S, HELD = 2.0, 256
-
-#: The longest a thrower's page is held back (s): the time `THROWN` takes to refill one.
-THROWN_HOLD_S = 10.0
 
 
 def refusal_after(client: str) -> float:

@@ -185,11 +185,11 @@ def presentation(contact: ContactView, message: pn.viewable.Viewable,
     contact.spheres.badge.glyph.text_font_size = BADGE_FONT
     contact.spheres.set_note_size(NOTE_PT)
     contact.traction.caption.text_font_size = CAPTION_FONT
-    # (the disc's title's type is in `DISC_RIM`: its frame's aspect follows from it)
-    for fig in (contact.spheres.figure, contact.disc.figure):
-        fig.title.text_font_size = NARROW_TITLE_FONT
-    contact.disc.figure.title.align = "right"
     traction, disc = contact.traction.figure, contact.disc.figure
+    # (the disc's title's type is in `DISC_RIM`: its frame's aspect follows from it)
+    for fig in (spheres, disc):
+        fig.title.text_font_size = NARROW_TITLE_FONT
+    disc.title.align = "right"
     for fig, name in ((spheres, "pp-spheres"), (traction, "pp-traction"), (disc, "pp-disc")):
         stretched(fig, name)
     for fig in (traction, disc):
